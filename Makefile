@@ -1,0 +1,41 @@
+# pmech: the two commands a new user needs.
+#   make demo   install what is missing (as root), build, run the default example
+#   make test   install what is missing (as root), build, run every test
+BUILD ?= build
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+DEMO ?= examples/elastic_disks/case.json
+PREFIX ?= /usr/local
+
+.PHONY: all deps build test demo install asan fuzz bench clean verify
+
+all: build
+
+deps:
+	@sh tools/install-deps.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=$(PREFIX)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@sh tools/demo.sh $(BUILD)/pmech $(DEMO)
+
+install: build
+	cmake --install $(BUILD)
+
+# Sanitizer configuration: the same tests under ASan and UBSan.
+asan: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DPMECH_SANITIZE=ON
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) -LE fuzz
+
+bench: build
+	sh bench/run.sh $(BUILD)/pmech
+
+clean:
+	rm -rf $(BUILD) build-asan

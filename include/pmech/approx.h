@@ -1,0 +1,95 @@
+/**
+ * @file approx.h
+ * @brief How a material point sees the nodes: connectivity and shape functions N_I(x_p) with
+ *        gradients. MPM, GMM and RKPM differ only in the approximation plugged in here.
+ */
+#ifndef PMECH_APPROX_H
+#define PMECH_APPROX_H
+
+#include "pmech/grid.h"
+#include "pmech/particles.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest number of nodes one point may be connected to. */
+#define PM_STENCIL_MAX 64
+
+/** The nodes a point talks to, their shape function values and gradients. */
+typedef struct pm_stencil {
+    int n;                           /**< number of nodes */
+    int32_t node[PM_STENCIL_MAX];    /**< node indices */
+    double N[PM_STENCIL_MAX];        /**< shape function values */
+    double dN[PM_STENCIL_MAX][2];    /**< shape function gradients (d/dx, d/dy) */
+} pm_stencil;
+
+typedef struct pm_approx pm_approx;
+
+/** Operations of an approximation; one static table per kind. */
+typedef struct pm_approx_ops {
+    const char *name;  /**< the `shape_function` value, e.g. "linear" */
+    /**
+     * Rebuild connectivity for all points (MPM: locate the cell of each point into p->cell;
+     * meshfree: neighbour search). Returns PM_OK or PM_ESIM naming a particle that left the grid.
+     */
+    int (*connect)(pm_approx *a, pm_particles *p);
+    /** Fill N and dN/dx for point @p ip. Returns PM_OK or PM_ESIM. */
+    int (*eval)(const pm_approx *a, const pm_particles *p, size_t ip, pm_stencil *s);
+    /** Free private data (may be NULL). */
+    void (*destroy)(pm_approx *a);
+} pm_approx_ops;
+
+/** An approximation bound to a grid (or node cloud). */
+struct pm_approx {
+    const pm_approx_ops *ops;  /**< the kind */
+    const pm_grid *grid;       /**< nodes it interpolates from */
+    int fast_linear_quad;      /**< 1: linear quad4 on a structured grid; solvers may inline it */
+    void *data;                /**< private data of the kind */
+};
+
+/**
+ * @brief Create the approximation called @p name on grid @p g.
+ * @param name a `shape_function` value
+ * @param g grid (must outlive the approximation)
+ * @param out receives a new approximation; free with pm_approx_destroy()
+ * @return PM_OK, PM_EINPUT for an unknown name or one that does not fit the grid
+ */
+int pm_approx_create(const char *name, const pm_grid *g, pm_approx **out);
+
+/** @brief Destroy an approximation (NULL is fine). */
+void pm_approx_destroy(pm_approx *a);
+
+/** @brief Names of all approximations, NULL-terminated (for messages and "did you mean"). */
+const char *const *pm_approx_names(void);
+
+/**
+ * @brief Linear shape functions of a structured quad4 cell, inline for the solvers' hot loops.
+ * @param g structured grid
+ * @param xp point
+ * @param cell cell containing xp
+ * @param node receives the 4 node indices (counter-clockwise from lower-left)
+ * @param N receives the 4 values
+ * @param dN receives the 4 gradients, (d/dx, d/dy) interleaved
+ */
+static inline void pm_linear_quad_eval(const pm_grid *g, const double xp[2], int32_t cell,
+                                       int32_t node[4], double N[4], double dN[8])
+{
+    const int nx = g->cells[0];
+    const int cx = cell % nx, cy = cell / nx;
+    const double ihx = 1.0 / g->h[0], ihy = 1.0 / g->h[1];
+    const double xi = (xp[0] - g->origin[0]) * ihx - cx;
+    const double eta = (xp[1] - g->origin[1]) * ihy - cy;
+    const int32_t n0 = cy * (nx + 1) + cx;
+    node[0] = n0; node[1] = n0 + 1; node[2] = n0 + nx + 2; node[3] = n0 + nx + 1;
+    N[0] = (1 - xi) * (1 - eta); N[1] = xi * (1 - eta); N[2] = xi * eta; N[3] = (1 - xi) * eta;
+    dN[0] = -(1 - eta) * ihx; dN[1] = -(1 - xi) * ihy;
+    dN[2] = (1 - eta) * ihx;  dN[3] = -xi * ihy;
+    dN[4] = eta * ihx;        dN[5] = xi * ihy;
+    dN[6] = -eta * ihx;       dN[7] = (1 - xi) * ihy;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,180 @@
+/**
+ * @file case.h
+ * @brief A case file (shared/design/INPUT.md) parsed and validated into plain C structs, and the
+ *        material-point driver file of `pmech material`.
+ *
+ * Loading never crashes on bad input: it returns PM_EINPUT with one message naming
+ * file:line:column (syntax) or the key path (e.g. `materials[0].poisson_ratio`), the value found
+ * and what is allowed, with a "did you mean" for unknown keys.
+ */
+#ifndef PMECH_CASE_H
+#define PMECH_CASE_H
+
+#include <stddef.h>
+#include "pmech/material.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PM_NAME_MAX 64
+#define PM_PATH_MAX 1024
+
+typedef enum { PM_PLANE_STRAIN = 0, PM_PLANE_STRESS = 1, PM_AXISYMMETRIC = 2 } pm_formulation;
+typedef enum { PM_METHOD_MPM = 0, PM_METHOD_GMM = 1, PM_METHOD_RKPM = 2 } pm_method;
+typedef enum { PM_ANALYSIS_EXPLICIT = 0, PM_ANALYSIS_IMPLICIT = 1, PM_ANALYSIS_QUASI_STATIC = 2 } pm_analysis_type;
+typedef enum { PM_SCHEME_MUSL = 0, PM_SCHEME_USL = 1, PM_SCHEME_USF = 2, PM_SCHEME_NEWMARK_PC = 3 } pm_scheme;
+typedef enum { PM_SHAPE_RECTANGLE = 0, PM_SHAPE_POLYGON = 1, PM_SHAPE_CIRCLE = 2, PM_SHAPE_GMSH_GROUP = 3 } pm_shape_type;
+typedef enum { PM_BC_FIXED = 0, PM_BC_VELOCITY = 1, PM_BC_FRICTION = 2 } pm_bc_type;
+typedef enum { PM_STRESS0_NONE = 0, PM_STRESS0_GEOSTATIC = 1, PM_STRESS0_CONSTANT = 2 } pm_stress0_type;
+typedef enum {
+    PM_Q_POSITION = 0, PM_Q_DISPLACEMENT = 1, PM_Q_VELOCITY = 2, PM_Q_STRESS = 3, PM_Q_PLASTIC_STRAIN = 4
+} pm_quantity;
+typedef enum { PM_GRID_RECTANGLE = 0, PM_GRID_GMSH = 1 } pm_grid_type;
+
+/** The region a body fills. */
+typedef struct pm_shape {
+    pm_shape_type type;
+    double min[2], max[2];        /**< rectangle */
+    size_t n_points;              /**< polygon: vertex count (>= 3) */
+    double *points;               /**< polygon: 2 * n_points coordinates */
+    double center[2], radius;     /**< circle */
+    char group[PM_NAME_MAX];      /**< gmsh_group: physical group name */
+} pm_shape;
+
+/** bodies[] */
+typedef struct pm_case_body {
+    char name[PM_NAME_MAX];
+    int material;                 /**< index into pm_case::materials */
+    pm_shape shape;
+    int particles_per_cell;       /**< 0 = default for the element (2 quad, 3 tri) */
+    double velocity[2];
+    pm_stress0_type stress0;
+    double k0, surface_y;         /**< geostatic */
+    double stress0_value[4];      /**< constant [sxx, syy, szz, sxy] */
+} pm_case_body;
+
+/** boundary_conditions[] */
+typedef struct pm_case_bc {
+    pm_bc_type type;
+    char boundary[PM_NAME_MAX];   /**< side or physical name; "" when given as a line */
+    int line_axis;                /**< -1: named; 0: { "x": value }; 1: { "y": value } */
+    double line_value;
+    unsigned dirs;                /**< fixed: bit 0 = x, bit 1 = y; velocity: components given */
+    double value[2];              /**< velocity values (for the components in dirs) */
+    double coefficient;           /**< friction coefficient (>= 0) */
+} pm_case_bc;
+
+/** probes[] */
+typedef struct pm_case_probe {
+    char name[PM_NAME_MAX];
+    pm_quantity quantity;
+    int body;                     /**< -1: follows the particle nearest to point */
+    double point[2];
+} pm_case_probe;
+
+/** analysis.newton */
+typedef struct pm_newton_opts {
+    double tolerance;             /**< relative residual (default 1e-8) */
+    double displacement_tolerance;/**< relative displacement increment (default 1e-8) */
+    int max_iterations;           /**< default 25 */
+    int line_search;              /**< default 1 */
+    int max_step_cuts;            /**< halvings of dt or the load increment before giving up (default 8) */
+} pm_newton_opts;
+
+/** A whole case. */
+typedef struct pm_case {
+    char file[PM_PATH_MAX];       /**< the case file as given */
+    char dir[PM_PATH_MAX];        /**< its directory (for relative paths such as a gmsh file) */
+    char stem[PM_PATH_MAX];       /**< file name without directory and extension */
+    char title[256];
+    int dimension;
+    pm_formulation formulation;
+    pm_method method;
+    char shape_function[PM_NAME_MAX];
+    double lme_gamma;             /**< NAN = the approximation's default */
+    double support_radius;        /**< NAN = default */
+    struct {
+        pm_analysis_type type;
+        pm_scheme scheme;
+        double end_time;
+        double dt;                /**< 0 = automatic from cfl */
+        double cfl;
+        double gravity[2];
+        double gravity_ramp_time;
+        double damping;
+        pm_newton_opts newton;
+        int load_steps;
+    } analysis;
+    struct {
+        pm_grid_type type;
+        double origin[2], size[2];
+        int cells[2];
+        int element;              /**< pm_element */
+        char file[PM_PATH_MAX];   /**< gmsh: resolved against dir */
+    } grid;
+    size_t n_materials;
+    pm_material *materials;
+    size_t n_bodies;
+    pm_case_body *bodies;
+    size_t n_bcs;
+    pm_case_bc *bcs;
+    size_t n_probes;
+    pm_case_probe *probes;
+    struct {
+        char directory[PM_PATH_MAX]; /**< default "<stem>.out" */
+        double interval;             /**< default end_time / 100 */
+        double probe_interval;       /**< 0 = every step */
+    } output;
+} pm_case;
+
+/**
+ * @brief Load and validate a case file.
+ * @param path file to read
+ * @param c receives the case (free with pm_case_free, also after a failure)
+ * @return PM_OK, PM_EINPUT (message names file:line:column or key path), PM_EIO, PM_ENOMEM
+ */
+int pm_case_load(const char *path, pm_case *c);
+
+/**
+ * @brief Load a case from text in memory (for tests and the fuzz target).
+ * @param text JSON text
+ * @param len its length in bytes
+ * @param name file name used in messages (its directory resolves relative paths)
+ * @param c receives the case (free with pm_case_free)
+ */
+int pm_case_load_buffer(const char *text, size_t len, const char *name, pm_case *c);
+
+/** @brief Free what a case owns and zero it. Safe on a zeroed struct. */
+void pm_case_free(pm_case *c);
+
+/** Material-point driver path types. */
+typedef enum { PM_PATH_TRIAXIAL = 0, PM_PATH_OEDOMETER = 1, PM_PATH_SIMPLE_SHEAR = 2, PM_PATH_INCREMENTS = 3 } pm_path_type;
+
+/** A `pmech material` driver file. */
+typedef struct pm_driver {
+    pm_material material;
+    double stress0[4];            /**< initial [sxx, syy, szz, sxy], tension positive */
+    pm_path_type path;
+    double confining_pressure;    /**< triaxial, compression positive */
+    double axial_strain;          /**< triaxial/oedometer, compression positive */
+    double shear_strain;          /**< simple_shear, engineering gamma_xy */
+    int steps;                    /**< increments of the path (default 100) */
+    double dt;                    /**< time per step for rate-dependent models (default 1e-3) */
+    size_t n_increments;          /**< strain_increments */
+    double *increments;           /**< 4 per increment: dexx, deyy, dezz, dgxy */
+} pm_driver;
+
+/**
+ * @brief Load a driver file (INPUT.md, "Material-point driver files").
+ * @return PM_OK or PM_EINPUT/PM_EIO with a message as for case files
+ */
+int pm_driver_load(const char *path, pm_driver *d);
+
+/** @brief Free what a driver owns. */
+void pm_driver_free(pm_driver *d);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,76 @@
+/**
+ * @file output.h
+ * @brief Everything a run writes: ParaView VTU/PVD frames, grid.vtu, probes.csv, energy.csv and
+ *        run.json. Every file is written under a temporary name and renamed, so what is on disk
+ *        is always complete, even when a run stops on an error.
+ */
+#ifndef PMECH_OUTPUT_H
+#define PMECH_OUTPUT_H
+
+#include "pmech/case.h"
+#include "pmech/grid.h"
+#include "pmech/particles.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pm_output pm_output;
+
+/** What run.json records about a run. */
+typedef struct pm_run_summary {
+    const char *version;            /**< pmech version */
+    const char *case_file;          /**< the case file as given */
+    long steps;                     /**< time steps taken */
+    double dt_min, dt_max;          /**< smallest and largest step */
+    double end_time;                /**< simulated time reached */
+    double wall_seconds;            /**< whole run */
+    double loop_seconds;            /**< time loop only (no setup, no file output) */
+    double particle_steps_per_second; /**< particles * steps / loop_seconds */
+    size_t particles;               /**< particle count */
+    int exit_status;                /**< 0, 1 or 2 as the program exits */
+    const char *message;            /**< error message ("" on success) */
+    int threads;                    /**< OpenMP threads used */
+} pm_run_summary;
+
+/**
+ * @brief Create the output directory (and parents), write grid.vtu, open probes.csv and
+ *        energy.csv with their headers, and resolve probes (nearest particle at t = 0, ties to the
+ *        lowest index; or a body's mass-weighted mean).
+ * @return PM_OK, PM_EIO naming the path that could not be written
+ */
+int pm_output_open(pm_output **o, const char *dir, const pm_case *c, const pm_grid *g,
+                   const pm_particles *p);
+
+/** @brief Write particles_NNNNNN.vtu for time @p t and rewrite particles.pvd listing all frames. */
+int pm_output_frame(pm_output *o, double t, const pm_particles *p);
+
+/** @brief Append one row of probe values at time @p t to probes.csv (no-op without probes). */
+int pm_output_probes(pm_output *o, double t, const pm_particles *p);
+
+/** @brief Append `time,kinetic,strain,gravity,total` to energy.csv. */
+int pm_output_energy(pm_output *o, double t, double kinetic, double strain, double gravity);
+
+/** @brief Particle index followed by probe @p k (-1 for a body probe). */
+long pm_output_probe_particle(const pm_output *o, size_t k);
+
+/**
+ * @brief Flush and close the CSV files, write run.json, free @p o. Safe with NULL.
+ * @return PM_OK or PM_EIO
+ */
+int pm_output_close(pm_output *o, const pm_run_summary *s);
+
+/**
+ * @brief Write @p len bytes to @p path atomically (temporary file in the same directory, then rename).
+ */
+int pm_write_file_atomic(const char *path, const void *data, size_t len);
+
+/**
+ * @brief Create a directory and its parents (like mkdir -p).
+ */
+int pm_mkdir_p(const char *path);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,77 @@
+/**
+ * @file particles.h
+ * @brief Material points stored as structure-of-arrays, sized once before the time loop.
+ *
+ * 2-D layout: vectors are interleaved pairs (x[2*i], x[2*i+1]); the deformation gradient has
+ * five entries per point (xx, xy, yx, yy, zz) and the Cauchy stress four (xx, yy, zz, xy),
+ * tension positive. zz is the out-of-plane (plane strain/stress) or hoop (axisymmetric) entry.
+ */
+#ifndef PMECH_PARTICLES_H
+#define PMECH_PARTICLES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Entries of the 2-D deformation gradient per particle. */
+#define PM_NF 5
+/** Entries of the 2-D stress per particle. */
+#define PM_NS 4
+
+/** Index of each entry of F in the per-particle block of pm_particles::F. */
+enum { PM_FXX = 0, PM_FXY = 1, PM_FYX = 2, PM_FYY = 3, PM_FZZ = 4 };
+/** Index of each entry of the stress in the per-particle block of pm_particles::stress. */
+enum { PM_SXX = 0, PM_SYY = 1, PM_SZZ = 2, PM_SXY = 3 };
+
+/** The material points of a simulation. All arrays hold n entries (times their width). */
+typedef struct pm_particles {
+    size_t n;          /**< number of particles */
+    size_t n_state;    /**< history variables per particle (max over the materials) */
+    double *x;         /**< current position, 2 per particle */
+    double *x0;        /**< initial position, 2 per particle (displacement = x - x0) */
+    double *v;         /**< velocity, 2 per particle */
+    double *a;         /**< acceleration, 2 per particle (predictor-corrector schemes) */
+    double *mass;      /**< mass (per radian in axisymmetric runs) */
+    double *vol;       /**< current volume */
+    double *vol0;      /**< initial volume */
+    double *F;         /**< deformation gradient, PM_NF per particle */
+    double *stress;    /**< Cauchy stress, PM_NS per particle, tension positive */
+    double *eps_p;     /**< equivalent plastic strain */
+    double *state;     /**< material history, n_state per particle */
+    double *hsize;     /**< initial half-size of the particle's domain (x, y), 2 per particle */
+    int32_t *material; /**< index into the case's material list */
+    int32_t *body;     /**< index into the case's body list */
+    int32_t *cell;     /**< background cell containing the particle (-1 = outside) */
+} pm_particles;
+
+/**
+ * @brief Allocate arrays for @p n particles with @p n_state history variables each, zeroed.
+ * @param p the struct to fill (its previous content is ignored)
+ * @param n particle count
+ * @param n_state history variables per particle
+ * @return PM_OK, or PM_ENOMEM with a message giving the bytes requested
+ */
+int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state);
+
+/** @brief Free every array and zero the struct. Safe on a zeroed struct. */
+void pm_particles_free(pm_particles *p);
+
+/** @brief Bytes of memory one particle takes with @p n_state history variables. */
+size_t pm_particles_bytes_per_particle(size_t n_state);
+
+/**
+ * @brief Reorder all particle arrays by @p perm (new index i takes old index perm[i]).
+ * @param p particles
+ * @param perm permutation of 0..n-1
+ * @param scratch workspace of at least n * max(n_state, PM_NF) doubles
+ * @return PM_OK
+ */
+int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

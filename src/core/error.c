@@ -1,0 +1,42 @@
+/* One message per thread: OpenMP workers can fail independently without racing on a buffer. */
+#include "pmech/error.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+static _Thread_local char pm_msg[2048];
+
+int pm_error_set(int code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(pm_msg, sizeof pm_msg, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+int pm_error_prefix(int code, const char *fmt, ...)
+{
+    char prefix[1024], old[sizeof pm_msg];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(prefix, sizeof prefix, fmt, ap);
+    va_end(ap);
+    memcpy(old, pm_msg, sizeof old);
+    snprintf(pm_msg, sizeof pm_msg, "%s%s", prefix, old);
+    return code;
+}
+
+const char *pm_error_message(void) { return pm_msg; }
+
+void pm_error_clear(void) { pm_msg[0] = '\0'; }
+
+int pm_exit_code(int status)
+{
+    switch (status) {
+    case PM_OK: return 0;
+    case PM_EINPUT: return 2;
+    default: return 1;
+    }
+}
