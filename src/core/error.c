@@ -24,7 +24,16 @@ int pm_error_prefix(int code, const char *fmt, ...)
     vsnprintf(prefix, sizeof prefix, fmt, ap);
     va_end(ap);
     memcpy(old, pm_msg, sizeof old);
-    snprintf(pm_msg, sizeof pm_msg, "%s%s", prefix, old);
+    /* truncation of an over-long message is acceptable: it stays a valid string */
+    size_t np = strlen(prefix);
+    if (np >= sizeof pm_msg)
+        np = sizeof pm_msg - 1;
+    memcpy(pm_msg, prefix, np);
+    size_t room = sizeof pm_msg - 1 - np, no = strlen(old);
+    if (no > room)
+        no = room;
+    memcpy(pm_msg + np, old, no);
+    pm_msg[np + no] = '\0';
     return code;
 }
 

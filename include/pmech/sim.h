@@ -1,0 +1,117 @@
+/**
+ * @file sim.h
+ * @brief A simulation: the case, its grid, approximation, particles and nodal arrays, and the
+ *        time integrators that advance it. The integrators see shape functions only through
+ *        pm_approx and constitutive models only through pm_material.
+ */
+#ifndef PMECH_SIM_H
+#define PMECH_SIM_H
+
+#include <stdint.h>
+
+#include "pmech/approx.h"
+#include "pmech/case.h"
+#include "pmech/grid.h"
+#include "pmech/particles.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** A node on a frictional (Coulomb) grid boundary. */
+typedef struct pm_friction_node {
+    int32_t node;        /**< grid node */
+    double normal[2];    /**< outward unit normal of the boundary */
+    double mu;           /**< friction coefficient */
+} pm_friction_node;
+
+/** Nodal arrays of the background grid; all sized once (no allocation inside steps). */
+typedef struct pm_nodal {
+    double *mass;        /**< lumped mass */
+    double *mom;         /**< momentum, 2 per node */
+    double *vel;         /**< velocity at the start of the step (after constraints), 2 per node */
+    double *vel_new;     /**< velocity at the end of the step, 2 per node */
+    double *force;       /**< total force (internal + external), 2 per node */
+    double *acc;         /**< acceleration, 2 per node */
+    uint8_t *fixed;      /**< bit 0: x prescribed, bit 1: y prescribed */
+    double *vfix;        /**< prescribed velocity, 2 per node */
+    size_t n_friction;   /**< frictional boundary nodes */
+    pm_friction_node *friction;
+    int n_threads;       /**< scatter buffers for OpenMP threads beyond the first */
+    double *scratch;     /**< (n_threads - 1) * 5 * n_nodes doubles: mass, mom/force */
+} pm_nodal;
+
+/** Statistics a step reports. */
+typedef struct pm_step_info {
+    double dt;           /**< step taken */
+    double dt_next;      /**< stable step for the next step (automatic mode) */
+} pm_step_info;
+
+/** The whole simulation state. */
+typedef struct pm_sim {
+    const pm_case *c;    /**< the case (not owned) */
+    pm_grid grid;        /**< background grid */
+    pm_approx *approx;   /**< shape functions */
+    pm_particles p;      /**< material points */
+    pm_nodal nd;         /**< nodal arrays */
+    double t;            /**< simulated time */
+    long step;           /**< steps taken */
+    double dt_next;      /**< step to take next */
+    double max_wave;     /**< largest c + |v| over particles at the last stress update */
+    double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
+} pm_sim;
+
+/**
+ * @brief Build the grid, approximation, particles (seeded from the bodies) and nodal arrays.
+ * @param c a loaded case (must outlive the simulation)
+ * @param s receives the new simulation; free with pm_sim_destroy()
+ * @param n_threads OpenMP threads the steps will use (>= 1)
+ * @return PM_OK; PM_EINPUT for a case that cannot be set up (a body with no particle, ...)
+ */
+int pm_sim_create(const pm_case *c, pm_sim **s, int n_threads);
+
+/** @brief Free a simulation (NULL is fine). */
+void pm_sim_destroy(pm_sim *s);
+
+/**
+ * @brief Advance one explicit step with the case's scheme (usf, usl, musl, newmark_pc).
+ * @param s simulation
+ * @param dt step size (> 0)
+ * @return PM_OK, or PM_ESIM naming the step and the particle that failed
+ */
+int pm_explicit_step(pm_sim *s, double dt);
+
+/**
+ * @brief The stable step cfl * h_min / (c + v_max) for the current state.
+ */
+double pm_sim_stable_dt(const pm_sim *s);
+
+/** @brief Gravity vector at time @p t (with the case's ramp). */
+void pm_sim_gravity(const pm_sim *s, double t, double g[2]);
+
+/**
+ * @brief Kinetic, stored (strain) and gravitational potential energy of the particles.
+ */
+void pm_sim_energy(const pm_sim *s, double *kinetic, double *strain, double *gravity);
+
+/** Options of a whole run. */
+typedef struct pm_run_opts {
+    const char *out_dir;   /**< output directory (NULL: the case's) */
+    int quiet;             /**< no progress line */
+    int threads;           /**< OpenMP threads (0: OMP_NUM_THREADS or all cores) */
+    int write_output;      /**< 0: write no files (tests) */
+} pm_run_opts;
+
+/**
+ * @brief Run a case to its end time, writing all outputs.
+ * @param c loaded case
+ * @param o options
+ * @param out_sim if not NULL, receives the final simulation (caller destroys), for tests
+ * @return PM_OK, PM_EINPUT (setup), PM_ESIM (diverged: outputs so far stay valid), PM_EIO
+ */
+int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,45 @@
+/* The pmech program: dispatches to sub-commands. */
+#include "cli/commands.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "pmech %s - particle solver for large-deformation solid mechanics (MPM, GMM, RKPM)\n"
+            "\n"
+            "usage:\n"
+            "  pmech run CASE.json [-o DIR] [--quiet] [--threads N]\n"
+            "      run a case file; outputs (ParaView particles.pvd, grid.vtu, probes.csv,\n"
+            "      energy.csv, run.json) go to DIR (default: the case's output.directory)\n"
+            "  pmech material DRIVER.json [-o OUT.csv]\n"
+            "      drive one material point along a stress/strain path and write CSV\n"
+            "  pmech --help | --version\n"
+            "\n"
+            "exit codes: 0 success, 1 the simulation failed, 2 invalid input\n"
+            "input reference: docs/input.md\n",
+            PMECH_VERSION);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("pmech %s\n", PMECH_VERSION);
+        return 0;
+    }
+    if (!strcmp(argv[1], "run"))
+        return pm_cmd_run(argc - 1, argv + 1);
+    if (!strcmp(argv[1], "material"))
+        return pm_cmd_material(argc - 1, argv + 1);
+    fprintf(stderr, "pmech: unknown command '%s' (commands: run, material; see pmech --help)\n", argv[1]);
+    return 2;
+}

@@ -1,0 +1,143 @@
+/* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
+#include "pmech/sim.h"
+#include "pmech/error.h"
+#include "pmech/output.h"
+#include "pmech/progress.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <string.h>
+
+static int check_supported(const pm_case *c)
+{
+    if (c->analysis.type != PM_ANALYSIS_EXPLICIT)
+        return pm_error_set(PM_EINPUT, "%s: analysis.type: only 'explicit' analyses are available in this version",
+                            c->file);
+    if (c->formulation != PM_PLANE_STRAIN)
+        return pm_error_set(PM_EINPUT, "%s: formulation: only 'plane_strain' is available in this version", c->file);
+    if (c->method != PM_METHOD_MPM)
+        return pm_error_set(PM_EINPUT, "%s: method: only 'mpm' is available in this version", c->file);
+    return PM_OK;
+}
+
+/* Step size for the next step: fixed, or cfl * h / (c + |v|) from the last stress update. */
+static double next_dt(const pm_sim *s)
+{
+    const pm_case *c = s->c;
+    if (c->analysis.dt > 0)
+        return c->analysis.dt;
+    if (s->step == 0 || !(s->max_wave > 0))
+        return pm_sim_stable_dt(s);
+    return c->analysis.cfl * s->grid.h_min / s->max_wave;
+}
+
+static int write_energy(pm_output *out, const pm_sim *s)
+{
+    double ke, se, ge;
+    pm_sim_energy(s, &ke, &se, &ge);
+    return pm_output_energy(out, s->t, ke, se, ge);
+}
+
+int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
+{
+    const double wall0 = pm_wall_seconds();
+    if (out_sim)
+        *out_sim = NULL;
+    pm_check(check_supported(c));
+    int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
+    pm_sim *s = NULL;
+    pm_check(pm_sim_create(c, &s, threads));
+    pm_output *out = NULL;
+    int rc = PM_OK;
+    const char *dir = o->out_dir ? o->out_dir : c->output.directory;
+    if (o->write_output) {
+        rc = pm_output_open(&out, dir, c, &s->grid, &s->p);
+        if (!rc)
+            rc = pm_output_frame(out, 0.0, &s->p);
+        if (!rc)
+            rc = pm_output_probes(out, 0.0, &s->p);
+        if (!rc)
+            rc = write_energy(out, s);
+        if (rc) {
+            pm_output_close(out, NULL);
+            pm_sim_destroy(s);
+            return rc;
+        }
+    }
+    const double end = c->analysis.end_time, interval = c->output.interval;
+    const double eps = 1e-12 * end;
+    double next_frame = interval, next_energy = interval / 20, loop_seconds = 0;
+    double dt_min = INFINITY, dt_max = 0, last_frame_t = 0;
+    pm_progress pg;
+    pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet);
+    while (s->t < end - eps) {
+        double dt = next_dt(s);
+        if (s->t + dt > end)
+            dt = end - s->t;
+        if (!(dt > 0) || !isfinite(dt)) {
+            rc = pm_error_set(PM_ESIM, "step %ld (t = %.6g s): the stable time step is %g: the run diverged",
+                              s->step + 1, s->t, dt);
+            break;
+        }
+        const double w0 = pm_wall_seconds();
+        rc = pm_explicit_step(s, dt);
+        loop_seconds += pm_wall_seconds() - w0;
+        if (rc)
+            break;
+        dt_min = fmin(dt_min, dt);
+        dt_max = fmax(dt_max, dt);
+        if (out) {
+            rc = pm_output_probes(out, s->t, &s->p);
+            if (!rc && s->t >= next_energy - eps) {
+                rc = write_energy(out, s);
+                next_energy += interval / 20;
+            }
+            if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
+                rc = pm_output_frame(out, s->t, &s->p);
+                last_frame_t = s->t;
+                while (next_frame <= s->t + eps)
+                    next_frame += interval;
+            }
+            if (rc)
+                break;
+        }
+        pm_progress_update(&pg, s->step, s->t);
+    }
+    if (!rc && out && last_frame_t < s->t) {
+        rc = pm_output_frame(out, s->t, &s->p);
+        if (!rc)
+            rc = write_energy(out, s);
+    }
+    pm_progress_end(&pg, s->step, s->t);
+    pm_run_summary sum = {
+        .version = PMECH_VERSION,
+        .case_file = c->file,
+        .steps = s->step,
+        .dt_min = isfinite(dt_min) ? dt_min : 0,
+        .dt_max = dt_max,
+        .end_time = s->t,
+        .wall_seconds = pm_wall_seconds() - wall0,
+        .loop_seconds = loop_seconds,
+        .particle_steps_per_second = loop_seconds > 0 ? (double)s->p.n * (double)s->step / loop_seconds : 0,
+        .particles = s->p.n,
+        .exit_status = pm_exit_code(rc),
+        .message = rc ? pm_error_message() : "",
+        .threads = threads,
+    };
+    if (out) {
+        char msg[2048];
+        snprintf(msg, sizeof msg, "%s", pm_error_message());
+        sum.message = rc ? msg : "";
+        int rc2 = pm_output_close(out, &sum);
+        if (!rc && rc2)
+            rc = rc2;
+        else if (rc)
+            pm_error_set(rc, "%s", msg);
+    }
+    if (out_sim && !rc)
+        *out_sim = s;
+    else
+        pm_sim_destroy(s);
+    return rc;
+}

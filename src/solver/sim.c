@@ -1,0 +1,228 @@
+/* Setting up a simulation from a case: grid, approximation, particles, nodal arrays, constraints. */
+#include "pmech/sim.h"
+#include "pmech/error.h"
+
+#include "core/seed.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int build_grid(const pm_case *c, pm_grid *g)
+{
+    if (c->grid.type != PM_GRID_RECTANGLE)
+        return pm_error_set(PM_EINPUT, "%s: grid.type: only 'rectangle' grids are available", c->file);
+    int rc = pm_grid_rectangle(g, c->grid.origin, c->grid.size, c->grid.cells, (pm_element)c->grid.element);
+    if (rc)
+        return pm_error_prefix(rc, "%s: grid: ", c->file);
+    return PM_OK;
+}
+
+static int add_friction(pm_nodal *nd, const pm_node_set *set, double mu)
+{
+    pm_friction_node *f = realloc(nd->friction, (nd->n_friction + set->n) * sizeof *f);
+    if (!f)
+        return pm_error_set(PM_ENOMEM, "out of memory for friction nodes");
+    nd->friction = f;
+    for (size_t i = 0; i < set->n; i++) {
+        pm_friction_node *fn = &nd->friction[nd->n_friction++];
+        fn->node = set->nodes[i];
+        fn->normal[0] = set->normal[0];
+        fn->normal[1] = set->normal[1];
+        fn->mu = mu;
+    }
+    return PM_OK;
+}
+
+static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
+{
+    for (size_t b = 0; b < c->n_bcs; b++) {
+        const pm_case_bc *bc = &c->bcs[b];
+        const pm_node_set *set;
+        if (bc->line_axis >= 0) {
+            char name[64];
+            snprintf(name, sizeof name, "%c=%g", bc->line_axis ? 'y' : 'x', bc->line_value);
+            int k = pm_grid_add_line_set(g, name, bc->line_axis, bc->line_value, NULL);
+            if (k < 0)
+                return pm_error_prefix(k, "%s: boundary_conditions[%zu].boundary: ", c->file, b);
+            set = &g->sets[k];
+        } else {
+            set = pm_grid_find_set(g, bc->boundary);
+            if (!set)
+                return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no boundary '%s' in the grid",
+                                    c->file, b, bc->boundary);
+        }
+        if (bc->type == PM_BC_FRICTION) {
+            if (set->normal[0] == 0 && set->normal[1] == 0)
+                return pm_error_set(PM_EINPUT,
+                                    "%s: boundary_conditions[%zu]: friction needs a grid side with an outward "
+                                    "normal (x_min, x_max, y_min, y_max), got a line",
+                                    c->file, b);
+            pm_check(add_friction(nd, set, bc->coefficient));
+            continue;
+        }
+        for (size_t i = 0; i < set->n; i++) {
+            int32_t n = set->nodes[i];
+            for (int d = 0; d < 2; d++) {
+                if (!(bc->dirs & (1u << d)))
+                    continue;
+                nd->fixed[n] |= (uint8_t)(1u << d);
+                nd->vfix[2 * n + d] = bc->type == PM_BC_VELOCITY ? bc->value[d] : 0.0;
+            }
+        }
+    }
+    return PM_OK;
+}
+
+static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads)
+{
+    nd->mass = calloc(nn, sizeof(double));
+    nd->mom = calloc(2 * nn, sizeof(double));
+    nd->vel = calloc(2 * nn, sizeof(double));
+    nd->vel_new = calloc(2 * nn, sizeof(double));
+    nd->force = calloc(2 * nn, sizeof(double));
+    nd->acc = calloc(2 * nn, sizeof(double));
+    nd->fixed = calloc(nn, 1);
+    nd->vfix = calloc(2 * nn, sizeof(double));
+    nd->n_threads = n_threads < 1 ? 1 : n_threads;
+    if (nd->n_threads > 1)
+        nd->scratch = calloc((size_t)(nd->n_threads - 1) * 5 * nn, sizeof(double));
+    if (!nd->mass || !nd->mom || !nd->vel || !nd->vel_new || !nd->force || !nd->acc || !nd->fixed ||
+        !nd->vfix || (nd->n_threads > 1 && !nd->scratch))
+        return pm_error_set(PM_ENOMEM, "cannot allocate nodal arrays for %zu nodes", nn);
+    return PM_OK;
+}
+
+static void free_nodal(pm_nodal *nd)
+{
+    free(nd->mass);
+    free(nd->mom);
+    free(nd->vel);
+    free(nd->vel_new);
+    free(nd->force);
+    free(nd->acc);
+    free(nd->fixed);
+    free(nd->vfix);
+    free(nd->friction);
+    free(nd->scratch);
+    memset(nd, 0, sizeof *nd);
+}
+
+static size_t max_state(const pm_case *c)
+{
+    size_t n = 0;
+    for (size_t m = 0; m < c->n_materials; m++)
+        if (c->materials[m].ops->n_state > n)
+            n = c->materials[m].ops->n_state;
+    return n;
+}
+
+int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
+{
+    *out = NULL;
+    pm_sim *s = calloc(1, sizeof *s);
+    if (!s)
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    s->c = c;
+    int rc = build_grid(c, &s->grid);
+    if (rc)
+        goto fail;
+    rc = pm_approx_create(c->shape_function, &s->grid, &s->approx);
+    if (rc) {
+        pm_error_prefix(rc, "%s: shape_function: ", c->file);
+        goto fail;
+    }
+    s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
+                                  s->grid.element == PM_QUAD4;
+    size_t *per_body = calloc(c->n_bodies ? c->n_bodies : 1, sizeof(size_t)), total = 0;
+    if (!per_body) {
+        rc = pm_error_set(PM_ENOMEM, "out of memory");
+        goto fail;
+    }
+    rc = pm_seed_count(c, &s->grid, per_body, &total);
+    free(per_body);
+    if (rc)
+        goto fail;
+    if ((rc = pm_particles_alloc(&s->p, total, max_state(c))) != 0 ||
+        (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 ||
+        (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads)) != 0 ||
+        (rc = apply_bcs(c, &s->grid, &s->nd)) != 0)
+        goto fail;
+    rc = s->approx->ops->connect(s->approx, &s->p);
+    if (rc) {
+        pm_error_prefix(PM_EINPUT, "%s: at t = 0: ", c->file);
+        rc = PM_EINPUT;
+        goto fail;
+    }
+    s->dt_next = c->analysis.dt > 0 ? c->analysis.dt : pm_sim_stable_dt(s);
+    *out = s;
+    return PM_OK;
+fail:
+    pm_sim_destroy(s);
+    return rc;
+}
+
+void pm_sim_destroy(pm_sim *s)
+{
+    if (!s)
+        return;
+    pm_approx_destroy(s->approx);
+    pm_particles_free(&s->p);
+    free_nodal(&s->nd);
+    pm_grid_free(&s->grid);
+    free(s);
+}
+
+void pm_sim_gravity(const pm_sim *s, double t, double g[2])
+{
+    const double *g0 = s->c->analysis.gravity;
+    double tr = s->c->analysis.gravity_ramp_time, f = 1.0;
+    if (tr > 0 && t < tr)
+        f = 0.5 * (1.0 - cos(M_PI * t / tr));
+    g[0] = f * g0[0];
+    g[1] = f * g0[1];
+}
+
+double pm_sim_stable_dt(const pm_sim *s)
+{
+    const pm_particles *p = &s->p;
+    double cmax = 0, vmax = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        const pm_material *m = &s->c->materials[p->material[i]];
+        double rho = p->mass[i] / p->vol[i];
+        double c = m->ops->wave_speed ? m->ops->wave_speed(m, p->state + p->n_state * i, rho)
+                                      : pm_material_elastic_wave_speed(m, NULL, rho);
+        double v = hypot(p->v[2 * i], p->v[2 * i + 1]);
+        cmax = fmax(cmax, c);
+        vmax = fmax(vmax, v);
+    }
+    return s->c->analysis.cfl * s->grid.h_min / (cmax + vmax);
+}
+
+void pm_sim_energy(const pm_sim *s, double *kinetic, double *strain, double *gravity)
+{
+    const pm_particles *p = &s->p;
+    double g[2], ke = 0, se = 0, ge = 0;
+    pm_sim_gravity(s, s->t, g);
+    for (size_t i = 0; i < p->n; i++) {
+        const double *v = p->v + 2 * i, *x = p->x + 2 * i, *x0 = p->x0 + 2 * i;
+        ke += 0.5 * p->mass[i] * (v[0] * v[0] + v[1] * v[1]);
+        ge -= p->mass[i] * (g[0] * (x[0] - x0[0]) + g[1] * (x[1] - x0[1]));
+        const pm_material *m = &s->c->materials[p->material[i]];
+        const double *st = p->stress + PM_NS * i, *F = p->F + PM_NF * i;
+        double s6[6] = {st[PM_SXX], st[PM_SYY], st[PM_SZZ], st[PM_SXY], 0, 0};
+        pm_material_step in;
+        memset(&in, 0, sizeof in);
+        double F3[9] = {F[PM_FXX], F[PM_FXY], 0, F[PM_FYX], F[PM_FYY], 0, 0, 0, F[PM_FZZ]};
+        memcpy(in.F_new, F3, sizeof F3);
+        memcpy(in.F_old, F3, sizeof F3);
+        in.F_incr[0] = in.F_incr[4] = in.F_incr[8] = 1.0;
+        double w = m->ops->strain_energy ? m->ops->strain_energy(m, &in, p->state + p->n_state * i, s6)
+                                         : pm_material_elastic_energy(m, &in, NULL, s6);
+        se += w * p->vol0[i];
+    }
+    *kinetic = ke;
+    *strain = se;
+    *gravity = ge;
+}
