@@ -39,3 +39,7 @@ bench: build
 
 clean:
 	rm -rf $(BUILD) build-asan
+
+# Runs the verification tests and rewrites docs/verification.md.
+verify: build
+	sh tools/verify.sh $(BUILD)

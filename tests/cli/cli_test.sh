@@ -1,0 +1,69 @@
+#!/bin/sh
+# End-to-end checks of the pmech program: help/version, exit codes and messages for bad input,
+# a diverging run (exit 1, names step and particle, every file written so far still valid), and a
+# real run whose VTU files VTK's own reader opens.
+# usage: cli_test.sh PMECH SOURCE_DIR WORK_DIR
+set -u
+PMECH=$1; SRC=$2; WORK=$3
+rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
+fail=0
+check() { # description, condition...
+  d=$1; shift
+  if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi
+}
+expect_exit() { # code, description, command...
+  code=$1; d=$2; shift 2
+  "$@" >out.txt 2>err.txt; rc=$?
+  if [ "$rc" -eq "$code" ]; then echo "ok   $d (exit $rc)"; else echo "FAIL $d: exit $rc, wanted $code"; cat err.txt; fail=1; fi
+}
+has() { grep -q -- "$1" "$2"; }
+
+expect_exit 0 "--version" "$PMECH" --version
+check "version printed" has "pmech " out.txt
+expect_exit 0 "--help" "$PMECH" --help
+check "help names run" has "pmech run" out.txt
+expect_exit 2 "no arguments" "$PMECH"
+expect_exit 2 "unknown command" "$PMECH" frobnicate
+expect_exit 2 "missing case file" "$PMECH" run does-not-exist.json
+expect_exit 2 "bad option" "$PMECH" run "$SRC/examples/elastic_disks/case.json" --frob
+
+printf '{ "dimension": 2,\n  "analysis": { "type": "explicit" "end_time": 1 } }\n' > syntax.json
+expect_exit 2 "JSON syntax error" "$PMECH" run syntax.json
+check "syntax error names file:line:column" grep -Eq 'syntax.json:2:[0-9]+' err.txt
+
+sed 's/"youngs_modulus": 1000/"youngs_modulus": -5/' "$SRC/examples/elastic_disks/case.json" > negE.json
+expect_exit 2 "negative Young's modulus" "$PMECH" run negE.json
+check "message names materials[0].youngs_modulus" has "materials\[0\].youngs_modulus" err.txt
+
+sed 's/"particles_per_cell"/"particles_per_cel"/' "$SRC/examples/elastic_disks/case.json" > typo.json
+expect_exit 2 "unknown key" "$PMECH" run typo.json
+check "did you mean" has "did you mean 'particles_per_cell'" err.txt
+
+sed 's/"center": \[0.25, 0.25\], "radius": 0.2/"center": [5.25, 0.25], "radius": 0.2/' "$SRC/examples/elastic_disks/case.json" > outside.json
+expect_exit 2 "body outside the grid" "$PMECH" run outside.json
+check "names the body" has "bodies\[0\]" err.txt
+
+sed 's/"radius": 0.2 }, *$/"radius": 0.001 },/; s/"center": \[0.25, 0.25\], "radius": 0.2/"center": [0.26, 0.26], "radius": 0.0001/' "$SRC/examples/elastic_disks/case.json" > tiny.json
+expect_exit 2 "body that yields no particle" "$PMECH" run tiny.json
+check "says no particle" has "yields no particle" err.txt
+
+# A run that diverges: a fixed time step 50x above the stable one.
+sed 's/"end_time": 3.5, "cfl": 0.2/"end_time": 3.5, "dt": 0.5/' "$SRC/examples/elastic_disks/case.json" > diverge.json
+expect_exit 1 "diverging run" "$PMECH" run diverge.json -o diverge.out --quiet
+check "names the step" grep -Eq 'step [0-9]+' err.txt
+check "names the particle" grep -Eq 'particle [0-9]+' err.txt
+check "run.json records exit 1" python3 -c "import json,sys; r=json.load(open('diverge.out/run.json')); sys.exit(0 if r['exit_status']==1 and 'particle' in r['message'] else 1)"
+check "no temporary files left" sh -c '! ls diverge.out | grep -q tmp'
+nd=$(python3 -c "import json; print(json.load(open('diverge.out/run.json'))['particles'])")
+check "frames written so far are readable" python3 "$SRC/tests/io/vtk_readback.py" diverge.out "$nd"
+
+# A real run, read back by VTK.
+expect_exit 0 "elastic disks run" "$PMECH" run "$SRC/examples/elastic_disks/case.json" -o disks.out --quiet
+n=$(python3 -c "import json; print(json.load(open('disks.out/run.json'))['particles'])")
+check "VTK reads every frame" python3 "$SRC/tests/io/vtk_readback.py" disks.out "$n"
+check "probes.csv header" sh -c 'head -1 disks.out/probes.csv | grep -q "^time,lower.vx,lower.vy,upper.vx,upper.vy$"'
+check "energy.csv header" sh -c 'head -1 disks.out/energy.csv | grep -q "^time,kinetic,strain,gravity,total$"'
+check "run.json speed" python3 -c "import json,sys; r=json.load(open('disks.out/run.json')); sys.exit(0 if r['particle_steps_per_second']>0 and r['steps']>0 else 1)"
+
+if [ $fail -eq 0 ]; then echo "all CLI checks passed"; fi
+exit $fail

@@ -1,0 +1,4 @@
+add_test(NAME cli.end_to_end
+         COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/cli_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
+                 ${CMAKE_CURRENT_BINARY_DIR}/cli_work)
+set_tests_properties(cli.end_to_end PROPERTIES LABELS cli TIMEOUT 600)
