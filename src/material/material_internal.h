@@ -33,4 +33,46 @@ static inline double pm_voigt_q(const double s[6])
     return sqrt(3.0 * j2);
 }
 
+/*
+ * Elastic trial state of a hypo-elastic model: rotate sigma_n by Hughes-Winget, add D : deps.
+ * Fills deps (Voigt, engineering shears), the trial stress, its mean (tension positive), the
+ * deviator (tensor components) and q = sqrt(3 J2).
+ */
+typedef struct pm_trial {
+    double deps[6];  /* mid-step strain increment */
+    double sig[6];   /* trial stress */
+    double mean;     /* tr(sig)/3 */
+    double dev[6];   /* deviator of sig */
+    double q;        /* sqrt(3/2 dev:dev) */
+} pm_trial;
+
+/* Compute the trial state with bulk modulus K and shear modulus G. */
+void pm_trial_state(const double F_incr[9], const double stress[6], double K, double G, pm_trial *t);
+
+/* Deviator (tensor components) and mean of a Voigt stress; returns q = sqrt(3 J2). */
+double pm_voigt_split(const double s[6], double dev[6], double *mean);
+
+/*
+ * Tangent of an update sigma = mean 1 + ratio * s_e with s_e = s_rot + 2G dev(deps):
+ *   D = 1 (x) a + ratio 2G I_dev + s_e (x) c,
+ * where a = d mean / d eps and c = d ratio / d eps (6-vectors acting on engineering strains).
+ */
+void pm_tangent_invariant(const double a[6], double ratio, double G, const double se[6],
+                          const double c[6], double D[36]);
+
+/* d q_e / d eps = 3G s_e / q_e for s_e = s_rot + 2G dev(deps) (zero when q_e = 0). */
+void pm_dq_deps(double G, const double se[6], double qe, double out[6]);
+
+/* Deviatoric equivalent strain sqrt(2/3 e:e) of a Voigt strain with engineering shears. */
+double pm_equiv_dev_strain(const double e[6]);
+
+/*
+ * Backward-Euler Perzyna flow of seed 004 eq. 22: the de >= 0 solving
+ *   de = gdt ((q_e - m p - 3G de) / (m p))^N      (q_e > m p > 0, gdt = gamma dt > 0),
+ * closed form for N = 1 (unless @p newton), safeguarded Newton otherwise. d receives d de / d q_e,
+ * d de / d p and d de / d G.
+ */
+double pm_vp_solve(double qe, double p, double m, double G, double gdt, double N, int newton,
+                   double d[3]);
+
 #endif

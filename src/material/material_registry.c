@@ -7,6 +7,11 @@
 static const pm_material_ops *const registry[] = {
     &pm_linear_elastic_ops,
     &pm_neo_hookean_ops,
+    &pm_von_mises_ops,
+    &pm_mohr_coulomb_ops,
+    &pm_drucker_prager_ops,
+    &pm_viscoplastic_dp_ops,
+    &pm_granular_ops,
 };
 
 #define N_MODELS (sizeof registry / sizeof registry[0])
@@ -14,6 +19,11 @@ static const pm_material_ops *const registry[] = {
 static const char *const names[N_MODELS + 1] = {
     "linear_elastic",
     "neo_hookean",
+    "von_mises",
+    "mohr_coulomb",
+    "drucker_prager",
+    "viscoplastic_drucker_prager",
+    "granular",
     NULL,
 };
 
