@@ -45,6 +45,7 @@ struct pm_approx {
     const pm_approx_ops *ops;  /**< the kind */
     const pm_grid *grid;       /**< nodes it interpolates from */
     int fast_linear_quad;      /**< 1: linear quad4 on a structured grid; solvers may inline it */
+    int n_threads;             /**< OpenMP threads for connect (set by the owner; 1 by default) */
     void *data;                /**< private data of the kind */
 };
 

@@ -67,9 +67,10 @@ size_t pm_particles_bytes_per_particle(size_t n_state);
  * @param p particles
  * @param perm permutation of 0..n-1
  * @param scratch workspace of at least n * max(n_state, PM_NF) doubles
+ * @param iscratch workspace of at least n int32_t
  * @return PM_OK
  */
-int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch);
+int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch, int32_t *iscratch);
 
 #ifdef __cplusplus
 }

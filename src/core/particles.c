@@ -77,15 +77,14 @@ static void permute_doubles(double *a, size_t w, size_t n, const uint32_t *perm,
     memcpy(a, scratch, n * w * sizeof(double));
 }
 
-static void permute_ints(int32_t *a, size_t n, const uint32_t *perm, double *scratch)
+static void permute_ints(int32_t *a, size_t n, const uint32_t *perm, int32_t *scratch)
 {
-    int32_t *s = (int32_t *)scratch;
     for (size_t i = 0; i < n; i++)
-        s[i] = a[perm[i]];
-    memcpy(a, s, n * sizeof(int32_t));
+        scratch[i] = a[perm[i]];
+    memcpy(a, scratch, n * sizeof(int32_t));
 }
 
-int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch)
+int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch, int32_t *iscratch)
 {
     for (int k = 0; k < N_DOUBLE_ARRAYS; k++) {
         size_t w;
@@ -93,8 +92,8 @@ int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch)
         if (w)
             permute_doubles(*arr, w, p->n, perm, scratch);
     }
-    permute_ints(p->material, p->n, perm, scratch);
-    permute_ints(p->body, p->n, perm, scratch);
-    permute_ints(p->cell, p->n, perm, scratch);
+    permute_ints(p->material, p->n, perm, iscratch);
+    permute_ints(p->body, p->n, perm, iscratch);
+    permute_ints(p->cell, p->n, perm, iscratch);
     return PM_OK;
 }

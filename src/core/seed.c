@@ -252,9 +252,10 @@ int pm_seed_fill(const pm_case *c, const pm_grid *g, pm_particles *p)
         const pm_material *m = &c->materials[b->material];
         double *s = p->stress + PM_NS * i;
         initial_stress(c, b, p->x + 2 * i, s);
-        double s6[6] = {s[PM_SXX], s[PM_SYY], s[PM_SZZ], s[PM_SXY], 0, 0};
-        if (m->ops->init_state && p->n_state)
+        if (m->ops->init_state && p->n_state) {
+            double s6[6] = {s[PM_SXX], s[PM_SYY], s[PM_SZZ], s[PM_SXY], 0, 0};
             m->ops->init_state(m, s6, p->state + p->n_state * i);
+        }
     }
     return PM_OK;
 }

@@ -111,8 +111,42 @@ static double inv3(const double A[9], double B[9])
     return det;
 }
 
+/* The in-plane case (plane strain/stress, axisymmetric: no out-of-plane shear) is the explicit
+ * solver's hot path; the same formulas reduce to a 2x2 inverse and one rotation about z. */
+static int hughes_winget_planar(const double f[9], double stress[6], double deps[6])
+{
+    const double a = f[0] + 1.0, b = f[1], c = f[3], d = f[4] + 1.0;
+    const double det = a * d - b * c;
+    if (det == 0.0 || f[8] == -1.0)
+        return 0;
+    const double id = 1.0 / det;
+    const double pi00 = d * id, pi01 = -b * id, pi10 = -c * id, pi11 = a * id;
+    const double m00 = f[0] - 1.0, m01 = f[1], m10 = f[3], m11 = f[4] - 1.0;
+    const double g00 = 2.0 * (m00 * pi00 + m01 * pi10), g01 = 2.0 * (m00 * pi01 + m01 * pi11);
+    const double g10 = 2.0 * (m10 * pi00 + m11 * pi10), g11 = 2.0 * (m10 * pi01 + m11 * pi11);
+    deps[0] = g00;
+    deps[1] = g11;
+    deps[2] = 2.0 * (f[8] - 1.0) / (f[8] + 1.0);
+    deps[3] = g01 + g10;
+    deps[4] = deps[5] = 0.0;
+    const double w = 0.25 * (g01 - g10);
+    if (w == 0.0)
+        return 1;
+    /* Q = (I - W)^-1 (I + W) with W = [[0, w], [-w, 0]]: a rotation with these cosine and sine */
+    const double iw = 1.0 / (1.0 + w * w), cq = (1.0 - w * w) * iw, sq = 2.0 * w * iw;
+    const double sxx = stress[0], syy = stress[1], sxy = stress[3];
+    const double cc = cq * cq, ss = sq * sq, cs = cq * sq;
+    stress[0] = cc * sxx + 2.0 * cs * sxy + ss * syy;
+    stress[1] = ss * sxx - 2.0 * cs * sxy + cc * syy;
+    stress[3] = cs * (syy - sxx) + (cc - ss) * sxy;
+    return 1;
+}
+
 void pm_hughes_winget(const double F_incr[9], double stress[6], double deps[6])
 {
+    if (F_incr[2] == 0.0 && F_incr[5] == 0.0 && F_incr[6] == 0.0 && F_incr[7] == 0.0 && stress[4] == 0.0 &&
+        stress[5] == 0.0 && hughes_winget_planar(F_incr, stress, deps))
+        return;
     /* Gradient of the displacement increment with respect to the mid-step configuration
      * x_{n+1/2} = (x_n + x_{n+1}) / 2:  G = 2 (f - I)(f + I)^-1. */
     double fp[9], fpi[9], fm[9], G[9];

@@ -23,6 +23,7 @@ int pm_approx_create(const char *name, const pm_grid *g, pm_approx **out)
             return pm_error_set(PM_ENOMEM, "out of memory");
         a->ops = kinds[k];
         a->grid = g;
+        a->n_threads = 1;
         *out = a;
         return PM_OK;
     }

@@ -8,7 +8,7 @@ static int linear_connect(pm_approx *a, pm_particles *p)
 {
     const pm_grid *g = a->grid;
     long bad = -1;
-#pragma omp parallel for schedule(static) reduction(max : bad)
+#pragma omp parallel for schedule(static) reduction(max : bad) num_threads(a->n_threads)
     for (long i = 0; i < (long)p->n; i++) {
         int32_t c = pm_grid_locate(g, p->x + 2 * i);
         p->cell[i] = c;

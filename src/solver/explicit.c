@@ -262,6 +262,7 @@ static long p2g(pm_sim *s, double mom_shift, int with_force, const double g[2])
 {
     pm_particles *p = &s->p;
     long bad = LONG_MAX;
+    // cppcheck-suppress variableScope ; shared by the threads of the region below
     int used = 1;
 #pragma omp parallel num_threads(s->nd.n_threads) reduction(min : bad)
     {
@@ -323,6 +324,7 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
         return fail_particle(s, bad, "is outside the grid");
     grid_update(s, dt, 1);
     pm_nodal *nd = &s->nd;
+    // cppcheck-suppress variableScope ; shared by the threads of the region below
     int used = 1;
     if (musl) {
         /* particle velocities from nodal accelerations, then their momentum back to the grid */
@@ -349,7 +351,9 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
                 const double m = p->mass[i];
                 for (int k = 0; k < st.n; k++) {
                     const int32_t n = st.node[k];
+                    // cppcheck-suppress unreadVariable ; b.mom points into the nodal arrays
                     b.mom[2 * n] += st.N[k] * m * v[0];
+                    // cppcheck-suppress unreadVariable
                     b.mom[2 * n + 1] += st.N[k] * m * v[1];
                 }
             }
@@ -402,6 +406,7 @@ static long stress_and_force(pm_sim *s, double dt, const double *nv, const doubl
     pm_particles *p = &s->p;
     pm_nodal *nd = &s->nd;
     double wave = 0;
+    // cppcheck-suppress variableScope ; shared by the threads of the region below
     int used = 1;
     long bad = LONG_MAX;
 #pragma omp parallel num_threads(nd->n_threads) reduction(min : bad) reduction(max : wave)

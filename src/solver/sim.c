@@ -133,6 +133,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         pm_error_prefix(rc, "%s: shape_function: ", c->file);
         goto fail;
     }
+    s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
     s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
                                   s->grid.element == PM_QUAD4;
     size_t *per_body = calloc(c->n_bodies ? c->n_bodies : 1, sizeof(size_t)), total = 0;

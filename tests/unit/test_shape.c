@@ -1,0 +1,130 @@
+/* Linear shape functions on quad4 and tri3: partition of unity, linear reproduction and
+ * gradient consistency to 1e-12 (exact in exact arithmetic; 1e-12 leaves room for round-off on
+ * coordinates of order 10). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "pmech/approx.h"
+#include "pmech/grid.h"
+#include "pmech/particles.h"
+
+static double rnd(unsigned *seed) { return (double)rand_r(seed) / RAND_MAX; }
+
+static void check_reproduction(pm_element el)
+{
+    pm_grid g;
+    const double origin[2] = {-1.5, 2.0}, size[2] = {7.0, 3.0};
+    const int cells[2] = {7, 5};
+    assert_int_equal(pm_grid_rectangle(&g, origin, size, cells, el), 0);
+    pm_approx *a;
+    assert_int_equal(pm_approx_create("linear", &g, &a), 0);
+    pm_particles p;
+    const size_t n = 2000;
+    assert_int_equal(pm_particles_alloc(&p, n, 0), 0);
+    unsigned seed = 7;
+    for (size_t i = 0; i < n; i++) {
+        p.x[2 * i] = origin[0] + size[0] * rnd(&seed);
+        p.x[2 * i + 1] = origin[1] + size[1] * rnd(&seed);
+    }
+    assert_int_equal(a->ops->connect(a, &p), 0);
+    /* an arbitrary linear field u = c0 + c1 x + c2 y */
+    const double c0 = 0.3, c1 = -1.7, c2 = 2.9;
+    for (size_t i = 0; i < n; i++) {
+        pm_stencil st;
+        assert_int_equal(a->ops->eval(a, &p, i, &st), 0);
+        double sum = 0, u = 0, gx = 0, gy = 0, sx = 0, sy = 0, xr = 0, yr = 0;
+        for (int k = 0; k < st.n; k++) {
+            const double *xn = g.x + 2 * st.node[k];
+            double un = c0 + c1 * xn[0] + c2 * xn[1];
+            sum += st.N[k];
+            u += st.N[k] * un;
+            xr += st.N[k] * xn[0];
+            yr += st.N[k] * xn[1];
+            gx += st.dN[k][0] * un;
+            gy += st.dN[k][1] * un;
+            sx += st.dN[k][0];
+            sy += st.dN[k][1];
+            assert_true(st.N[k] >= -1e-12);
+        }
+        const double *x = p.x + 2 * i;
+        assert_true(fabs(sum - 1) < 1e-12);
+        assert_true(fabs(sx) < 1e-12 && fabs(sy) < 1e-12);
+        assert_true(fabs(xr - x[0]) < 1e-12 && fabs(yr - x[1]) < 1e-12);
+        assert_true(fabs(u - (c0 + c1 * x[0] + c2 * x[1])) < 1e-12);
+        assert_true(fabs(gx - c1) < 1e-12 && fabs(gy - c2) < 1e-12);
+    }
+    pm_particles_free(&p);
+    pm_approx_destroy(a);
+    pm_grid_free(&g);
+}
+
+static void quad4_reproduces_linear_fields(void **state)
+{
+    (void)state;
+    check_reproduction(PM_QUAD4);
+}
+
+static void tri3_reproduces_linear_fields(void **state)
+{
+    (void)state;
+    check_reproduction(PM_TRI3);
+}
+
+/* The inlined quad4 path of the solvers must equal the generic one bit for bit. */
+static void inline_quad_matches_generic(void **state)
+{
+    (void)state;
+    pm_grid g;
+    const double origin[2] = {0, 0}, size[2] = {1, 2};
+    const int cells[2] = {4, 8};
+    assert_int_equal(pm_grid_rectangle(&g, origin, size, cells, PM_QUAD4), 0);
+    pm_approx *a;
+    assert_int_equal(pm_approx_create("linear", &g, &a), 0);
+    pm_particles p;
+    assert_int_equal(pm_particles_alloc(&p, 1, 0), 0);
+    p.x[0] = 0.61;
+    p.x[1] = 1.37;
+    assert_int_equal(a->ops->connect(a, &p), 0);
+    pm_stencil st;
+    assert_int_equal(a->ops->eval(a, &p, 0, &st), 0);
+    int32_t node[4];
+    double N[4], dN[8];
+    pm_linear_quad_eval(&g, p.x, p.cell[0], node, N, dN);
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(node[k], st.node[k]);
+        assert_true(N[k] == st.N[k] && dN[2 * k] == st.dN[k][0] && dN[2 * k + 1] == st.dN[k][1]);
+    }
+    pm_particles_free(&p);
+    pm_approx_destroy(a);
+    pm_grid_free(&g);
+}
+
+static void unknown_shape_function_is_input_error(void **state)
+{
+    (void)state;
+    pm_grid g;
+    const double origin[2] = {0, 0}, size[2] = {1, 1};
+    const int cells[2] = {1, 1};
+    assert_int_equal(pm_grid_rectangle(&g, origin, size, cells, PM_QUAD4), 0);
+    pm_approx *a = NULL;
+    assert_int_equal(pm_approx_create("cubic_hermite", &g, &a), -1);
+    assert_null(a);
+    pm_grid_free(&g);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(quad4_reproduces_linear_fields),
+        cmocka_unit_test(tri3_reproduces_linear_fields),
+        cmocka_unit_test(inline_quad_matches_generic),
+        cmocka_unit_test(unknown_shape_function_is_input_error),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
