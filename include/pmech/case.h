@@ -125,6 +125,7 @@ typedef struct pm_case {
         char directory[PM_PATH_MAX]; /**< default "<stem>.out" */
         double interval;             /**< default end_time / 100 */
         double probe_interval;       /**< 0 = every step */
+        char pictures[PM_NAME_MAX];  /**< field of a PNG picture per frame (pm_field_from_name), "" = none */
     } output;
 } pm_case;
 
