@@ -21,8 +21,10 @@ static const pm_param_spec vm_params[] = {
 
 static int vm_init(pm_material *m)
 {
-    const double H = m->param[P_HARD];
-    if (!(3.0 * m->G + H > 0))
+    const double H = m->param[P_HARD], sy = m->param[P_YIELD];
+    if (!(sy > 0) || !isfinite(sy))
+        return pm_error_set(PM_EINPUT, "yield_stress = %g: must be > 0", sy);
+    if (!isfinite(H) || !(3.0 * m->G + H > 0))
         return pm_error_set(PM_EINPUT,
                             "hardening_modulus = %g: softening must satisfy 3 G + H > 0 (H > %g)", H,
                             -3.0 * m->G);
