@@ -176,26 +176,46 @@ int pm_plot_lines(const char *png, const pm_plot_series *s, size_t ns, const pm_
                 }
     }
     cairo_restore(cr);
-    /* legend, top left inside the plot */
-    double ly = T + 1.2 * fs;
-    for (size_t k = 0; k < ns; k++) {
-        if (!s[k].label || !s[k].label[0])
-            continue;
-        const double *c = s[k].rgb;
-        if (c[0] == 0 && c[1] == 0 && c[2] == 0)
-            c = palette[k % 6];
-        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
-        const double dash[] = {8.0, 5.0};
-        cairo_set_dash(cr, dash, s[k].dashed ? 2 : 0, 0);
-        cairo_set_line_width(cr, 2.0);
-        cairo_move_to(cr, L + 0.8 * fs, ly - 0.35 * fs);
-        cairo_line_to(cr, L + 3.0 * fs, ly - 0.35 * fs);
+    /* legend inside the plot, in the corner chosen by o->legend, on a white box */
+    size_t nl = 0;
+    double lw = 0;
+    for (size_t k = 0; k < ns; k++)
+        if (s[k].label && s[k].label[0]) {
+            cairo_text_extents(cr, s[k].label, &te);
+            lw = fmax(lw, te.x_advance);
+            nl++;
+        }
+    if (nl) {
+        const double bw = lw + 4.3 * fs, bh = 1.4 * fs * nl + 0.6 * fs;
+        const int right = o->legend == 1 || o->legend == 2, bottom = o->legend == 2 || o->legend == 3;
+        const double bx = right ? R - bw - 0.5 * fs : L + 0.5 * fs;
+        const double by = bottom ? B - bh - 0.5 * fs : T + 0.5 * fs;
+        cairo_set_source_rgba(cr, 1, 1, 1, 0.9);
+        cairo_rectangle(cr, bx, by, bw, bh);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0.7, 0.7, 0.7);
+        cairo_set_line_width(cr, 1.0);
         cairo_stroke(cr);
-        cairo_set_dash(cr, dash, 0, 0);
-        cairo_set_source_rgb(cr, 0, 0, 0);
-        cairo_move_to(cr, L + 3.5 * fs, ly);
-        cairo_show_text(cr, s[k].label);
-        ly += 1.4 * fs;
+        double ly = by + 1.3 * fs;
+        for (size_t k = 0; k < ns; k++) {
+            if (!s[k].label || !s[k].label[0])
+                continue;
+            const double *c = s[k].rgb;
+            if (c[0] == 0 && c[1] == 0 && c[2] == 0)
+                c = palette[k % 6];
+            cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+            const double dash[] = {8.0, 5.0};
+            cairo_set_dash(cr, dash, s[k].dashed ? 2 : 0, 0);
+            cairo_set_line_width(cr, 2.0);
+            cairo_move_to(cr, bx + 0.5 * fs, ly - 0.35 * fs);
+            cairo_line_to(cr, bx + 3.0 * fs, ly - 0.35 * fs);
+            cairo_stroke(cr);
+            cairo_set_dash(cr, dash, 0, 0);
+            cairo_set_source_rgb(cr, 0, 0, 0);
+            cairo_move_to(cr, bx + 3.5 * fs, ly);
+            cairo_show_text(cr, s[k].label);
+            ly += 1.4 * fs;
+        }
     }
 #undef PX
 #undef PY

@@ -31,6 +31,7 @@ typedef struct pm_plot_opts {
     const char *ylabel;  /**< left of the y axis, rotated */
     int width, height;   /**< pixels (default 800 x 560) */
     int y_from_zero;     /**< 1: the y range includes 0 */
+    int legend;          /**< legend corner: 0 top left, 1 top right, 2 bottom right, 3 bottom left */
 } pm_plot_opts;
 
 /**
