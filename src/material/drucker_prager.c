@@ -91,7 +91,6 @@ static int dp_update(const pm_material *m, const pm_material_step *in, double *s
     double h = 3.0 * G + 3.0 * K * beta * b + hkk;
     double dl = (t.q + s3 * beta * t.mean - k0 * (hkk != 0.0 || k0 > 0)) / h;
     if (hkk != 0.0 && k0 + hk * dl < 0) { /* strength softened to zero within the step */
-        hkk = 0.0;
         h = 3.0 * G + 3.0 * K * beta * b;
         dl = (t.q + s3 * beta * t.mean) / h;
     }

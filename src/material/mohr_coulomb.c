@@ -277,7 +277,7 @@ static int mc_update(const pm_material *m, const pm_material_step *in, double *s
     pm_trial_state(in->F_incr, stress, K, G, &t);
     if (!isfinite(t.q + t.mean))
         return PM_ESIM;
-    double str[3], V[9], sig[3], Dp[9];
+    double str[3], V[9], sig[3], Dp[9] = {0};
     pm_eig_sym3(t.sig, str, V);
     if (!mc_return(m, str, sig, tangent ? Dp : NULL)) {
         memcpy(stress, t.sig, 6 * sizeof(double));
