@@ -292,6 +292,47 @@ static void mc_tension_cutoff(void **unused)
         assert_true(fabs(l[a] - 5e3) <= 1e-10 * 5e3);
 }
 
+/* Random trial states (with and without a tension cut-off): every return is admissible and lies
+ * on the surface, and returning the returned stress again changes nothing. */
+static void mc_random_returns(void **unused)
+{
+    (void)unused;
+    unsigned seed = 12345;
+    for (int cut = 0; cut < 2; cut++) {
+        pm_material m = mc_material(cut ? 3e3 : NAN);
+        const double sp = sin(M_PI / 6), k = (1 + sp) / (1 - sp);
+        const double sc = 2 * 1e4 * cos(M_PI / 6) / (1 - sp), T = cut ? 3e3 : INFINITY;
+        int plastic = 0;
+        for (int it = 0; it < 4000; it++) {
+            double e[3], de[6], s[6], st[PM_MAT_MAX_STATE], s2[6], st2[PM_MAT_MAX_STATE];
+            for (int i = 0; i < 3; i++) {
+                seed = seed * 1103515245u + 12345u;
+                e[i] = ((seed >> 8) / 16777216.0 - 0.5) * 2e-2;
+            }
+            seed = seed * 1103515245u + 12345u;
+            const double a = (seed >> 8) / 16777216.0 * 6.3;
+            rotated_increment(e[0], e[1], e[2], a, 0.5 * a, de);
+            const double s0[6] = {-5e4, -8e4, -6e4, 1e4, 0, 0};
+            assert_int_equal(upd(&m, s0, zero_state, de, 0, s, st, NULL), PM_OK);
+            double l[3], V[9];
+            pm_eig_sym3(s, l, V);
+            const double scale = fabs(l[0]) + fabs(l[2]) + sc;
+            const double f = k * l[0] - l[2] - sc;
+            if (!(f <= 1e-10 * scale) || !(l[0] - T <= 1e-10 * scale))
+                fail_msg("cut %d it %d: f = %g, s1 - T = %g", cut, it, f / scale, (l[0] - T) / scale);
+            if (st[0] > 0) {
+                plastic++;
+                assert_true(fabs(f) <= 1e-10 * scale || fabs(l[0] - T) <= 1e-10 * scale);
+            }
+            const double z[6] = {0};
+            assert_int_equal(upd(&m, s, st, z, 0, s2, st2, NULL), PM_OK);
+            for (int i = 0; i < 6; i++)
+                assert_true(fabs(s2[i] - s[i]) <= 1e-9 * scale);
+        }
+        assert_true(plastic > 1000);
+    }
+}
+
 /* ---- Drucker-Prager ------------------------------------------------------------------------ */
 
 static double dp_f_rel(const pm_material *m, const double s[6], const double *st)
@@ -625,6 +666,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mc_returns),
         cmocka_unit_test(mc_tension_cutoff),
+        cmocka_unit_test(mc_random_returns),
         cmocka_unit_test(dp_returns),
         cmocka_unit_test(vm_returns),
         cmocka_unit_test(vp_flow_law),
