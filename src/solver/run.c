@@ -3,6 +3,7 @@
 #include "pmech/error.h"
 #include "pmech/output.h"
 #include "pmech/progress.h"
+#include "pmech/render.h"
 
 #include <math.h>
 #include <omp.h>
@@ -32,6 +33,22 @@ static double next_dt(const pm_sim *s)
     return c->analysis.cfl * s->grid.h_min / s->max_wave;
 }
 
+/* One output frame: the VTU (and PVD) and, when asked for, a PNG picture of the same state. */
+static int write_frame(pm_output *out, const pm_sim *s, const char *dir, int *frame)
+{
+    pm_check(pm_output_frame(out, s->t, &s->p));
+    const char *field = s->c->output.pictures;
+    if (field[0]) {
+        char path[PM_PATH_MAX + 32], title[400];
+        snprintf(path, sizeof path, "%s/particles_%06d.png", dir, *frame);
+        snprintf(title, sizeof title, "%s   t = %.4g s   %s", s->c->title, s->t, field);
+        int f = pm_field_from_name(field);
+        pm_check(pm_render_particles(path, &s->grid, &s->p, f < 0 ? PM_FIELD_BODY : (pm_field)f, 800, title));
+    }
+    (*frame)++;
+    return PM_OK;
+}
+
 static int write_energy(pm_output *out, const pm_sim *s)
 {
     double ke, se, ge;
@@ -49,12 +66,12 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_sim *s = NULL;
     pm_check(pm_sim_create(c, &s, threads));
     pm_output *out = NULL;
-    int rc = PM_OK;
+    int rc = PM_OK, frame = 0;
     const char *dir = o->out_dir ? o->out_dir : c->output.directory;
     if (o->write_output) {
         rc = pm_output_open(&out, dir, c, &s->grid, &s->p);
         if (!rc)
-            rc = pm_output_frame(out, 0.0, &s->p);
+            rc = write_frame(out, s, dir, &frame);
         if (!rc)
             rc = pm_output_probes(out, 0.0, &s->p);
         if (!rc)
@@ -94,7 +111,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
                 next_energy += interval / 20;
             }
             if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
-                rc = pm_output_frame(out, s->t, &s->p);
+                rc = write_frame(out, s, dir, &frame);
                 last_frame_t = s->t;
                 while (next_frame <= s->t + eps)
                     next_frame += interval;
@@ -105,7 +122,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         pm_progress_update(&pg, s->step, s->t);
     }
     if (!rc && out && last_frame_t < s->t) {
-        rc = pm_output_frame(out, s->t, &s->p);
+        rc = write_frame(out, s, dir, &frame);
         if (!rc)
             rc = write_energy(out, s);
     }
