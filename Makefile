@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 DEMO ?= examples/elastic_disks/case.json
 PREFIX ?= /usr/local
 
-.PHONY: all deps build test demo install asan fuzz bench clean verify
+.PHONY: all deps build test demo install asan fuzz bench clean verify lint
 
 all: build
 
@@ -43,3 +43,10 @@ clean:
 # Runs the verification tests and rewrites docs/verification.md.
 verify: build
 	sh tools/verify.sh $(BUILD)
+
+# Static analysis and the clang build: both must be silent.
+lint: deps
+	cppcheck --enable=warning,style,performance --inline-suppr --error-exitcode=1 -q \
+	  --suppress=missingIncludeSystem -Iinclude -Isrc src
+	CC=clang cmake -S . -B build-clang -DCMAKE_BUILD_TYPE=Release
+	cmake --build build-clang -j $(JOBS)
