@@ -1,0 +1,96 @@
+/* Progress of a run: one line redrawn in place on a terminal (at most 5 times a second), a plain
+ * line every 10 s of wall time in a log, nothing when quiet. Called every step, so the common
+ * path is one monotonic clock read and a comparison. */
+#include "pmech/progress.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <time.h>
+#include <unistd.h>
+
+#define TTY_PERIOD 0.2  /* seconds between redraws on a terminal */
+#define LOG_PERIOD 10.0 /* seconds between lines otherwise */
+
+double pm_wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void pm_progress_begin(pm_progress *pg, FILE *out, double end_time, size_t particles, int quiet)
+{
+    pg->out = out;
+    pg->quiet = quiet || !out;
+    int fd = out ? fileno(out) : -1;
+    pg->tty = !pg->quiet && fd >= 0 && isatty(fd);
+    pg->end_time = end_time;
+    pg->particles = particles;
+    pg->wall_start = pm_wall_seconds();
+    pg->last_print = pg->wall_start;
+    pg->last_step = 0;
+    pg->last_wall = pg->wall_start;
+}
+
+/* h:mm:ss, or "-:--:--" when unknown */
+static void fmt_hms(char *buf, size_t n, double s)
+{
+    if (!(s >= 0) || s > 3.6e9) {
+        snprintf(buf, n, "-:--:--");
+        return;
+    }
+    long v = lround(s);
+    snprintf(buf, n, "%ld:%02ld:%02ld", v / 3600, (v / 60) % 60, v % 60);
+}
+
+/* The status line (no '\r' or newline). label is "ETA" with the estimated time left, or "wall"
+ * with the time so far; rate in particle-steps per second. */
+static void print_line(const pm_progress *pg, long step, double t, const char *label, double secs,
+                       double rate)
+{
+    char hms[32];
+    fmt_hms(hms, sizeof hms, secs);
+    double pct = pg->end_time > 0 ? 100.0 * t / pg->end_time : 0.0;
+    if (!isfinite(rate) || rate < 0)
+        rate = 0;
+    fprintf(pg->out, "step %ld  t = %.3e s  %.1f %%  %s %s  %.3g M particle-steps/s", step, t, pct, label, hms,
+            rate * 1e-6);
+}
+
+void pm_progress_update(pm_progress *pg, long step, double t)
+{
+    if (pg->quiet)
+        return;
+    const double now = pm_wall_seconds();
+    if (now - pg->last_print < (pg->tty ? TTY_PERIOD : LOG_PERIOD))
+        return;
+    const double elapsed = now - pg->wall_start;
+    const double eta = t > 0 && pg->end_time > t ? elapsed * (pg->end_time - t) / t : t > 0 ? 0.0 : -1.0;
+    const double dw = now - pg->last_wall;
+    const double rate = dw > 0 ? (double)pg->particles * (double)(step - pg->last_step) / dw : 0.0;
+    if (pg->tty)
+        fputc('\r', pg->out);
+    print_line(pg, step, t, "ETA", eta, rate);
+    /* a terminal: clear what is left of a longer previous line */
+    fputs(pg->tty ? "\033[K" : "\n", pg->out);
+    fflush(pg->out);
+    pg->last_print = now;
+    pg->last_wall = now;
+    pg->last_step = step;
+}
+
+void pm_progress_end(pm_progress *pg, long step, double t)
+{
+    if (pg->quiet)
+        return;
+    const double now = pm_wall_seconds(), elapsed = now - pg->wall_start;
+    const double rate = elapsed > 0 ? (double)pg->particles * (double)step / elapsed : 0.0;
+    if (pg->tty)
+        fputc('\r', pg->out);
+    print_line(pg, step, t, "wall", elapsed, rate);
+    fputs(pg->tty ? "\033[K\n" : "\n", pg->out);
+    fflush(pg->out);
+    pg->last_print = now;
+    pg->last_wall = now;
+    pg->last_step = step;
+}
