@@ -231,6 +231,40 @@ static void mc_returns(void **unused)
             assert_true(fabs(mc_f_rel(&m, s)) <= 1e-10);
             assert_true(st[0] > 0);
         }
+        if (r == R_EDGE_C || r == R_EDGE_E) {
+            /* plastic strain in the cone of the two potential gradients meeting on the edge:
+             * compression edge (m, 0, -1), (0, m, -1); extension edge (m, 0, -1), (m, -1, 0) */
+            double lt[3], V[9], ds[6], dp[3], ep[3];
+            pm_eig_sym3(str, lt, V);
+            for (int i = 0; i < 6; i++)
+                ds[i] = str[i] - s[i];
+            for (int a = 0; a < 3; a++) {
+                const double v[3] = {V[a], V[3 + a], V[6 + a]};
+                dp[a] = v[0] * (ds[0] * v[0] + ds[3] * v[1] + ds[5] * v[2]) +
+                        v[1] * (ds[3] * v[0] + ds[1] * v[1] + ds[4] * v[2]) +
+                        v[2] * (ds[5] * v[0] + ds[4] * v[1] + ds[2] * v[2]);
+            }
+            const double tr = dp[0] + dp[1] + dp[2];
+            for (int a = 0; a < 3; a++)
+                ep[a] = (dp[a] - tr / 3) / (2 * m.G) + tr / 3 / (3 * m.K);
+            const double g1[3] = {mm, 0, -1};
+            const double g2c[3] = {0, mm, -1}, g2e[3] = {mm, -1, 0};
+            const double *g2 = r == R_EDGE_C ? g2c : g2e;
+            /* least squares ep = a g1 + b g2 */
+            const double A11 = g1[0] * g1[0] + g1[1] * g1[1] + g1[2] * g1[2];
+            const double A12 = g1[0] * g2[0] + g1[1] * g2[1] + g1[2] * g2[2];
+            const double A22 = g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2];
+            const double b1 = g1[0] * ep[0] + g1[1] * ep[1] + g1[2] * ep[2];
+            const double b2 = g2[0] * ep[0] + g2[1] * ep[1] + g2[2] * ep[2];
+            const double det = A11 * A22 - A12 * A12;
+            const double ca = (A22 * b1 - A12 * b2) / det, cb = (A11 * b2 - A12 * b1) / det;
+            const double en = sqrt(ep[0] * ep[0] + ep[1] * ep[1] + ep[2] * ep[2]);
+            double res = 0;
+            for (int a = 0; a < 3; a++)
+                res += pow(ep[a] - ca * g1[a] - cb * g2[a], 2);
+            assert_true(sqrt(res) <= 1e-8 * en);
+            assert_true(ca >= -1e-10 * en && cb >= -1e-10 * en);
+        }
         if (r == R_PLANE) {
             /* plastic strain De^-1 (str - s) along the potential gradient (m, 0, -1) in the trial
              * principal axes */
