@@ -82,42 +82,77 @@ static void reduce_bufs(const pm_sim *s, int nt, int with_mass, int with_force)
     }
 }
 
-/* Internal force of particle i on the nodes of its stencil, plus its weight. */
+/* Internal force of particle i on the nodes of its stencil, plus its weight. In axisymmetric runs
+ * (x = r) the hoop stress adds -V sigma_tt N / r to the radial force (seed 004 eq. 4). */
 static inline void scatter_force(const pm_sim *s, size_t i, const pm_stencil *st, const double g[2],
                                  double *force)
 {
     const double *sg = s->p.stress + PM_NS * i;
     const double V = s->p.vol[i], m = s->p.mass[i];
+    const double hoop = s->c->formulation == PM_AXISYMMETRIC ? sg[PM_SZZ] / s->p.x[2 * i] : 0.0;
     for (int k = 0; k < st->n; k++) {
         const int32_t n = st->node[k];
         const double dx = st->dN[k][0], dy = st->dN[k][1], N = st->N[k];
-        force[2 * n] += -V * (sg[PM_SXX] * dx + sg[PM_SXY] * dy) + N * m * g[0];
+        force[2 * n] += -V * (sg[PM_SXX] * dx + sg[PM_SXY] * dy + hoop * N) + N * m * g[0];
         force[2 * n + 1] += -V * (sg[PM_SXY] * dx + sg[PM_SYY] * dy) + N * m * g[1];
     }
+}
+
+/* Plane stress: find the out-of-plane stretch increment that makes sigma_zz vanish, by Newton
+ * iterations on the material's own update (its tangent gives the slope). The state is restored
+ * before each retry so that the accepted update is a single step of the model. */
+static int plane_stress_update(const pm_material *m, pm_material_step *in, double *state, size_t n_state,
+                               double s6[6], double Fzz_old)
+{
+    double st0[PM_MAT_MAX_STATE], s0[6], T[36];
+    memcpy(st0, state, n_state * sizeof(double));
+    memcpy(s0, s6, sizeof s0);
+    double dz = 1.0;
+    for (int it = 0; it < 12; it++) {
+        memcpy(state, st0, n_state * sizeof(double));
+        memcpy(s6, s0, sizeof s0);
+        in->F_incr[8] = dz;
+        in->F_new[8] = dz * Fzz_old;
+        if (m->ops->update(m, in, state, s6, T) != PM_OK)
+            return 1;
+        const double scale = fabs(s6[0]) + fabs(s6[1]) + fabs(s6[3]) + 1e-300;
+        if (fabs(s6[2]) <= 1e-12 * scale || !(T[14] > 0))
+            break;
+        dz -= s6[2] / T[14];
+        if (!(dz > 0))
+            return 1;
+    }
+    s6[2] = 0.0;
+    return 0;
 }
 
 /*
  * Velocity gradient from nodal velocities, then the material's stress update, volume from det F,
  * and the particle's wave speed. Returns 0, or 1 if the point failed (inverted, NaN, model failure).
+ * The out-of-plane stretch: 1 (plane strain), from sigma_zz = 0 (plane stress), or the hoop rate
+ * v_r / r (axisymmetric).
  */
 static inline int update_stress(pm_sim *s, size_t i, const pm_stencil *st, const double *nv, double dt,
                                 double *wave)
 {
     pm_particles *p = &s->p;
-    double L[4] = {0, 0, 0, 0};
+    const pm_formulation form = s->c->formulation;
+    double L[4] = {0, 0, 0, 0}, vr = 0;
     for (int k = 0; k < st->n; k++) {
         const double *v = nv + 2 * st->node[k];
         L[0] += v[0] * st->dN[k][0];
         L[1] += v[0] * st->dN[k][1];
         L[2] += v[1] * st->dN[k][0];
         L[3] += v[1] * st->dN[k][1];
+        vr += v[0] * st->N[k];
     }
     double *F = p->F + PM_NF * i;
     pm_material_step in;
     const double a = 1 + dt * L[0], b = dt * L[1], c = dt * L[2], d = 1 + dt * L[3];
+    const double dz = form == PM_AXISYMMETRIC ? 1 + dt * vr / p->x[2 * i] : 1.0;
     in.F_incr[0] = a; in.F_incr[1] = b; in.F_incr[2] = 0;
     in.F_incr[3] = c; in.F_incr[4] = d; in.F_incr[5] = 0;
-    in.F_incr[6] = 0; in.F_incr[7] = 0; in.F_incr[8] = 1;
+    in.F_incr[6] = 0; in.F_incr[7] = 0; in.F_incr[8] = dz;
     in.F_old[0] = F[PM_FXX]; in.F_old[1] = F[PM_FXY]; in.F_old[2] = 0;
     in.F_old[3] = F[PM_FYX]; in.F_old[4] = F[PM_FYY]; in.F_old[5] = 0;
     in.F_old[6] = 0; in.F_old[7] = 0; in.F_old[8] = F[PM_FZZ];
@@ -125,19 +160,24 @@ static inline int update_stress(pm_sim *s, size_t i, const pm_stencil *st, const
     const double nyx = c * F[PM_FXX] + d * F[PM_FYX], nyy = c * F[PM_FXY] + d * F[PM_FYY];
     in.F_new[0] = nxx; in.F_new[1] = nxy; in.F_new[2] = 0;
     in.F_new[3] = nyx; in.F_new[4] = nyy; in.F_new[5] = 0;
-    in.F_new[6] = 0; in.F_new[7] = 0; in.F_new[8] = F[PM_FZZ];
+    in.F_new[6] = 0; in.F_new[7] = 0; in.F_new[8] = dz * F[PM_FZZ];
     in.dt = dt;
-    const double J = (nxx * nyy - nxy * nyx) * F[PM_FZZ];
-    if (!(J > 0))
+    const double J2 = nxx * nyy - nxy * nyx;
+    if (!(J2 > 0) || !(dz > 0))
         return 1;
-    F[PM_FXX] = nxx; F[PM_FXY] = nxy; F[PM_FYX] = nyx; F[PM_FYY] = nyy;
     const pm_material *m = &s->c->materials[p->material[i]];
     double *sg = p->stress + PM_NS * i, *state = p->state + p->n_state * i;
     double s6[6] = {sg[PM_SXX], sg[PM_SYY], sg[PM_SZZ], sg[PM_SXY], 0, 0};
-    if (m->ops->update(m, &in, state, s6, NULL) != PM_OK)
+    if (form == PM_PLANE_STRESS) {
+        if (plane_stress_update(m, &in, state, p->n_state, s6, F[PM_FZZ]))
+            return 1;
+    } else if (m->ops->update(m, &in, state, s6, NULL) != PM_OK) {
         return 1;
+    }
+    const double Fzz = in.F_new[8], J = J2 * Fzz;
+    F[PM_FXX] = nxx; F[PM_FXY] = nxy; F[PM_FYX] = nyx; F[PM_FYY] = nyy; F[PM_FZZ] = Fzz;
     sg[PM_SXX] = s6[0]; sg[PM_SYY] = s6[1]; sg[PM_SZZ] = s6[2]; sg[PM_SXY] = s6[3];
-    if (!isfinite(s6[0] + s6[1] + s6[2] + s6[3]))
+    if (!isfinite(s6[0] + s6[1] + s6[2] + s6[3]) || !(J > 0))
         return 1;
     p->vol[i] = p->vol0[i] * J;
     if (m->ops->plastic_strain)

@@ -15,8 +15,6 @@ static int check_supported(const pm_case *c)
     if (c->analysis.type != PM_ANALYSIS_EXPLICIT)
         return pm_error_set(PM_EINPUT, "%s: analysis.type: only 'explicit' analyses are available in this version",
                             c->file);
-    if (c->formulation != PM_PLANE_STRAIN)
-        return pm_error_set(PM_EINPUT, "%s: formulation: only 'plane_strain' is available in this version", c->file);
     if (c->method != PM_METHOD_MPM)
         return pm_error_set(PM_EINPUT, "%s: method: only 'mpm' is available in this version", c->file);
     return PM_OK;

@@ -13,6 +13,11 @@ static int build_grid(const pm_case *c, pm_grid *g)
 {
     if (c->grid.type != PM_GRID_RECTANGLE)
         return pm_error_set(PM_EINPUT, "%s: grid.type: only 'rectangle' grids are available", c->file);
+    if (c->formulation == PM_AXISYMMETRIC && c->grid.origin[0] < 0)
+        return pm_error_set(PM_EINPUT,
+                            "%s: grid.origin: in an axisymmetric run x is the radius, so the grid must lie in "
+                            "x >= 0; got origin x = %g",
+                            c->file, c->grid.origin[0]);
     int rc = pm_grid_rectangle(g, c->grid.origin, c->grid.size, c->grid.cells, (pm_element)c->grid.element);
     if (rc)
         return pm_error_prefix(rc, "%s: grid: ", c->file);
@@ -37,6 +42,14 @@ static int add_friction(pm_nodal *nd, const pm_node_set *set, double mu)
 
 static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
 {
+    if (c->formulation == PM_AXISYMMETRIC) {
+        /* nodes on the axis r = 0 cannot move radially */
+        for (size_t n = 0; n < g->n_nodes; n++)
+            if (fabs(g->x[2 * n]) <= 1e-9 * g->h_min) {
+                nd->fixed[n] |= 1u;
+                nd->vfix[2 * n] = 0.0;
+            }
+    }
     for (size_t b = 0; b < c->n_bcs; b++) {
         const pm_case_bc *bc = &c->bcs[b];
         const pm_node_set *set;
