@@ -82,6 +82,14 @@ void pm_sim_destroy(pm_sim *s);
 int pm_explicit_step(pm_sim *s, double dt);
 
 /**
+ * @brief Update every particle's F, stress, volume and plastic strain from nodal velocities
+ *        @p nodal_v (2 per node) over @p dt, as a step's stress pass does (with the case's
+ *        formulation). Used by the steps and by patch tests that prescribe nodal velocities.
+ * @return PM_OK, or PM_ESIM naming the particle that failed
+ */
+int pm_sim_update_stresses(pm_sim *s, const double *nodal_v, double dt);
+
+/**
  * @brief The stable step cfl * h_min / (c + v_max) for the current state.
  */
 double pm_sim_stable_dt(const pm_sim *s);

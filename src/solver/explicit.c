@@ -593,6 +593,26 @@ static int step_newmark_pc(pm_sim *s, double dt)
     return PM_OK;
 }
 
+int pm_sim_update_stresses(pm_sim *s, const double *nodal_v, double dt)
+{
+    pm_check(s->approx->ops->connect(s->approx, &s->p));
+    long bad = LONG_MAX;
+    double wave = 0;
+#pragma omp parallel num_threads(s->nd.n_threads) reduction(min : bad) reduction(max : wave)
+    {
+        pm_stencil st;
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < s->p.n; i++) {
+            double w = 0;
+            if (stencil_at(s, i, &st) != PM_OK || update_stress(s, i, &st, nodal_v, dt, &w))
+                bad = (long)i < bad ? (long)i : bad;
+            wave = w > wave ? w : wave;
+        }
+    }
+    s->max_wave = wave;
+    return bad == LONG_MAX ? PM_OK : fail_particle(s, bad, failure_text(s, bad));
+}
+
 int pm_explicit_step(pm_sim *s, double dt)
 {
     int rc = s->approx->ops->connect(s->approx, &s->p);
