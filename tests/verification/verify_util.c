@@ -1,0 +1,115 @@
+#include "verify_util.h"
+
+#include "pmech/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+const char *vu_dir = ".";
+
+void vu_init(int argc, char **argv)
+{
+    if (argc > 1)
+        vu_dir = argv[1];
+}
+
+void vu_load(const char *rel, pm_case *c)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/../../%s", vu_dir, rel);
+    if (pm_case_load(path, c) != PM_OK) {
+        fprintf(stderr, "cannot load %s: %s\n", path, pm_error_message());
+        exit(2);
+    }
+}
+
+pm_sim *vu_sim(const pm_case *c, int threads)
+{
+    pm_sim *s = NULL;
+    if (pm_sim_create(c, &s, threads) != PM_OK) {
+        fprintf(stderr, "setup failed: %s\n", pm_error_message());
+        exit(2);
+    }
+    return s;
+}
+
+double vu_dt(const pm_sim *s)
+{
+    if (s->c->analysis.dt > 0)
+        return s->c->analysis.dt;
+    if (s->step == 0 || !(s->max_wave > 0))
+        return pm_sim_stable_dt(s);
+    return s->c->analysis.cfl * s->grid.h_min / s->max_wave;
+}
+
+size_t vu_nearest(const pm_sim *s, double x, double y)
+{
+    size_t best = 0;
+    double bd = INFINITY;
+    for (size_t i = 0; i < s->p.n; i++) {
+        double dx = s->p.x0[2 * i] - x, dy = s->p.x0[2 * i + 1] - y, d = dx * dx + dy * dy;
+        if (d < bd) {
+            bd = d;
+            best = i;
+        }
+    }
+    return best;
+}
+
+void vu_body_mean(const pm_sim *s, int b, double v[2], double x[2])
+{
+    double m = 0;
+    v[0] = v[1] = x[0] = x[1] = 0;
+    for (size_t i = 0; i < s->p.n; i++) {
+        if (s->p.body[i] != b)
+            continue;
+        double mi = s->p.mass[i];
+        m += mi;
+        for (int d = 0; d < 2; d++) {
+            v[d] += mi * s->p.v[2 * i + d];
+            x[d] += mi * s->p.x[2 * i + d];
+        }
+    }
+    for (int d = 0; d < 2; d++) {
+        v[d] /= m;
+        x[d] /= m;
+    }
+}
+
+int vu_report(const char *bench, const char *quantity, double value, double ref, double err, double tol,
+              double seconds)
+{
+    int ok = tol < 0 || fabs(err) <= tol;
+    char tol_text[32] = "reported";
+    if (tol >= 0)
+        snprintf(tol_text, sizeof tol_text, "%.3g", tol);
+    printf("VERIFY|%s|%s|%.6g|%.6g|%.3g|%s|%.2f|%s\n", bench, quantity, value, ref, err, tol_text, seconds,
+           ok ? (tol < 0 ? "REPORT" : "PASS") : "FAIL");
+    if (tol >= 0)
+        printf("  %s: %s = %.6g, reference %.6g, error %.3g, tolerance %.3g: %s\n", bench, quantity, value, ref,
+               err, tol, ok ? "ok" : "FAILED");
+    fflush(stdout);
+    return ok;
+}
+
+double vu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+void vu_write_csv(const char *path, const char *header, const double *data, size_t nrow, int ncol)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return;
+    fprintf(f, "%s\n", header);
+    for (size_t r = 0; r < nrow; r++)
+        for (int c = 0; c < ncol; c++)
+            fprintf(f, "%.12g%c", data[r * ncol + c], c + 1 < ncol ? ',' : '\n');
+    fclose(f);
+}

@@ -1,0 +1,44 @@
+/* Shared helpers of the verification tests: load a case, run it step by step, report results in a
+ * form tools/verify.sh collects into docs/verification.md. */
+#ifndef PMECH_VERIFY_UTIL_H
+#define PMECH_VERIFY_UTIL_H
+
+#include "pmech/case.h"
+#include "pmech/sim.h"
+
+/** Directory of the verification sources (argv[1]); examples are at <dir>/../../examples. */
+extern const char *vu_dir;
+
+/** Parse argv; call first. */
+void vu_init(int argc, char **argv);
+
+/** Load a case relative to the repository root (e.g. "examples/dyka_bar/case.json"); aborts on error. */
+void vu_load(const char *rel, pm_case *c);
+
+/** Create a simulation of @p c with @p threads threads; aborts on error. */
+pm_sim *vu_sim(const pm_case *c, int threads);
+
+/** Step size the run loop would take next (fixed or CFL). */
+double vu_dt(const pm_sim *s);
+
+/** Index of the particle nearest to @p x at the start (ties: lowest index). */
+size_t vu_nearest(const pm_sim *s, double x, double y);
+
+/** Mass-weighted mean velocity and centre of mass of body @p b. */
+void vu_body_mean(const pm_sim *s, int b, double v[2], double x[2]);
+
+/**
+ * Record one verified figure: prints a `VERIFY|benchmark|quantity|pmech|reference|error|tolerance|
+ * seconds|PASS/FAIL` line and returns 1 if within tolerance (|error| <= tol). Use tol < 0 for a
+ * figure that is reported but not judged.
+ */
+int vu_report(const char *bench, const char *quantity, double value, double ref, double err, double tol,
+              double seconds);
+
+/** Monotonic seconds. */
+double vu_now(void);
+
+/** Write a CSV file of @p ncol columns (header comma separated) next to the test's working dir. */
+void vu_write_csv(const char *path, const char *header, const double *data, size_t nrow, int ncol);
+
+#endif
