@@ -1,0 +1,228 @@
+/* The case loader: a full valid case gives the right values and defaults; every class of bad input
+ * gives PM_EINPUT and one message naming the key path (or file:line:column), the value found and what
+ * is allowed. Messages are matched by exact substrings, so a vaguer message fails the test. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "pmech/case.h"
+#include "pmech/error.h"
+
+static const char *base =
+    "{\n"
+    "  \"title\": \"Dyka bar\",\n"
+    "  \"dimension\": 2,\n"
+    "  \"formulation\": \"plane_strain\",\n"
+    "  \"method\": \"mpm\",\n"
+    "  \"shape_function\": \"linear\",\n"
+    "  \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": 0.01, \"dt\": 1e-6, \"cfl\": 0.2,\n"
+    "                \"gravity\": [0.0, -9.81], \"gravity_ramp_time\": 0.0, \"damping\": 0.0 },\n"
+    "  \"grid\": { \"type\": \"rectangle\", \"origin\": [0.0, 0.0], \"size\": [1.0, 0.1], \"cells\": [100, 10],\n"
+    "            \"element\": \"quad4\" },\n"
+    "  \"materials\": [ { \"name\": \"steel\", \"model\": \"linear_elastic\", \"density\": 7800,\n"
+    "                   \"youngs_modulus\": 2.0e11, \"poisson_ratio\": 0.0 } ],\n"
+    "  \"bodies\": [ { \"name\": \"bar\", \"material\": \"steel\",\n"
+    "                \"shape\": { \"type\": \"rectangle\", \"min\": [0.0, 0.0], \"max\": [1.0, 0.1] },\n"
+    "                \"particles_per_cell\": 2, \"velocity\": [-5.0, 0.0] } ],\n"
+    "  \"boundary_conditions\": [ { \"type\": \"fixed\", \"boundary\": \"x_max\", \"directions\": [\"x\"] },\n"
+    "                             { \"type\": \"fixed\", \"boundary\": \"y_min\", \"directions\": [\"y\"] } ],\n"
+    "  \"output\": { \"directory\": \"out\", \"interval\": 1e-4 },\n"
+    "  \"probes\": [ { \"name\": \"A\", \"point\": [0.0, 0.05], \"quantity\": \"velocity\" } ]\n"
+    "}\n";
+
+/* base with the first occurrence of `from` replaced by `to` */
+static int load_edit(const char *from, const char *to, pm_case *c)
+{
+    char buf[8192];
+    const char *at = strstr(base, from);
+    assert_non_null(at);
+    snprintf(buf, sizeof buf, "%.*s%s%s", (int)(at - base), base, to, at + strlen(from));
+    return pm_case_load_buffer(buf, strlen(buf), "dir/case.json", c);
+}
+
+static void expect_error(const char *from, const char *to, const char *const *parts)
+{
+    pm_case c;
+    int rc = load_edit(from, to, &c);
+    const char *msg = pm_error_message();
+    if (rc != PM_EINPUT)
+        fail_msg("expected an input error for %s -> %s, got %d", from, to, rc);
+    for (size_t k = 0; parts[k]; k++)
+        if (!strstr(msg, parts[k]))
+            fail_msg("message \"%s\" lacks \"%s\"", msg, parts[k]);
+    pm_case_free(&c);
+}
+
+#define EXPECT(from, to, ...)                                  \
+    do {                                                       \
+        const char *const parts_[] = {__VA_ARGS__, NULL};      \
+        expect_error(from, to, parts_);                        \
+    } while (0)
+
+static void valid_case_loads(void **st)
+{
+    (void)st;
+    pm_case c;
+    assert_int_equal(pm_case_load_buffer(base, strlen(base), "dir/case.json", &c), PM_OK);
+    assert_string_equal(c.title, "Dyka bar");
+    assert_string_equal(c.stem, "case");
+    assert_string_equal(c.dir, "dir");
+    assert_int_equal(c.analysis.type, PM_ANALYSIS_EXPLICIT);
+    assert_int_equal(c.analysis.scheme, PM_SCHEME_MUSL);
+    assert_true(c.analysis.dt == 1e-6 && c.analysis.gravity[1] == -9.81);
+    assert_int_equal(c.grid.cells[0], 100);
+    assert_int_equal(c.n_materials, 1);
+    assert_true(c.materials[0].E == 2e11 && c.materials[0].density == 7800);
+    assert_true(fabs(c.materials[0].G - 1e11) < 1);
+    assert_int_equal(c.n_bodies, 1);
+    assert_int_equal(c.bodies[0].material, 0);
+    assert_true(c.bodies[0].velocity[0] == -5.0);
+    assert_int_equal(c.n_bcs, 2);
+    assert_int_equal(c.bcs[0].dirs, 1);
+    assert_string_equal(c.bcs[1].boundary, "y_min");
+    assert_int_equal(c.n_probes, 1);
+    assert_int_equal(c.probes[0].body, -1);
+    assert_string_equal(c.output.directory, "out");
+    assert_true(c.analysis.newton.max_iterations == 25 && c.analysis.load_steps == 10);
+    pm_case_free(&c);
+}
+
+static void defaults_apply(void **st)
+{
+    (void)st;
+    pm_case c;
+    assert_int_equal(load_edit("  \"output\": { \"directory\": \"out\", \"interval\": 1e-4 },\n", "", &c), PM_OK);
+    assert_string_equal(c.output.directory, "case.out");
+    assert_true(fabs(c.output.interval - 1e-4) < 1e-18);
+    pm_case_free(&c);
+    assert_int_equal(load_edit("\"dt\": 1e-6, \"cfl\": 0.2,", "", &c), PM_OK);
+    assert_true(c.analysis.dt == 0 && c.analysis.cfl == 0.2);
+    pm_case_free(&c);
+}
+
+static void syntax_error_names_line_and_column(void **st)
+{
+    (void)st;
+    EXPECT("\"dimension\": 2,", "\"dimension\": 2", "dir/case.json:4:");
+}
+
+static void unknown_keys_suggest(void **st)
+{
+    (void)st;
+    EXPECT("\"particles_per_cell\"", "\"particles_per_cel\"", "bodies[0].particles_per_cel", "unknown key",
+           "did you mean 'particles_per_cell'");
+    EXPECT("\"gravity\":", "\"gravty\":", "analysis.gravty", "did you mean 'gravity'");
+    EXPECT("\"model\": \"linear_elastic\"", "\"model\": \"linear_elastc\"", "materials[0].model", "linear_elastc",
+           "did you mean 'linear_elastic'", "mohr_coulomb");
+    EXPECT("\"scheme\": \"musl\"", "\"scheme\": \"mulsl\"", "analysis.scheme", "did you mean 'musl'");
+    EXPECT("\"boundary\": \"x_max\"", "\"boundary\": \"x_mx\"", "boundary_conditions[0].boundary", "x_mx",
+           "did you mean 'x_max'");
+}
+
+static void missing_and_mistyped_keys_name_their_path(void **st)
+{
+    (void)st;
+    EXPECT("\"end_time\": 0.01,", "", "analysis.end_time", "required key is missing");
+    EXPECT("\"end_time\": 0.01", "\"end_time\": \"soon\"", "analysis.end_time", "expected a number", "\"soon\"");
+    EXPECT("\"cells\": [100, 10]", "\"cells\": [100.5, 10]", "grid.cells", "two whole numbers");
+    EXPECT("\"velocity\": [-5.0, 0.0]", "\"velocity\": [-5.0]", "bodies[0].velocity", "a list of 2 numbers");
+}
+
+static void physical_nonsense_is_refused(void **st)
+{
+    (void)st;
+    EXPECT("\"youngs_modulus\": 2.0e11", "\"youngs_modulus\": -1", "materials[0].youngs_modulus", "-1", "> 0");
+    EXPECT("\"poisson_ratio\": 0.0", "\"poisson_ratio\": 0.5", "materials[0].poisson_ratio", "0.5", "(-1, 0.5)");
+    EXPECT("\"density\": 7800", "\"density\": 0", "materials[0].density", "got 0", "> 0");
+    EXPECT("\"end_time\": 0.01", "\"end_time\": -2", "analysis.end_time", "got -2", "> 0");
+    EXPECT("\"cfl\": 0.2", "\"cfl\": 1.5", "analysis.cfl", "got 1.5", "(0, 1]");
+    EXPECT("\"damping\": 0.0", "\"damping\": 2", "analysis.damping", "[0, 1]");
+    EXPECT("\"max\": [1.0, 0.1]", "\"max\": [1.5, 0.1]", "bodies[0].shape", "outside the grid");
+    EXPECT("\"material\": \"steel\"", "\"material\": \"stel\"", "bodies[0].material", "\"stel\"", "steel");
+    EXPECT("[ { \"name\": \"steel\", \"model\": \"linear_elastic\", \"density\": 7800,\n"
+           "                   \"youngs_modulus\": 2.0e11, \"poisson_ratio\": 0.0 } ]",
+           "[]", "materials", "empty");
+    EXPECT("\"cells\": [100, 10]", "\"cells\": [100000000, 100000000]", "grid.cells", "particles", "GB");
+    EXPECT("\"dimension\": 2", "\"dimension\": 3", "dimension", "3-D");
+}
+
+static void plastic_parameters_are_checked(void **st)
+{
+    (void)st;
+    EXPECT("\"model\": \"linear_elastic\", \"density\": 7800,",
+           "\"model\": \"mohr_coulomb\", \"cohesion\": 1e4, \"friction_angle\": 95, \"density\": 7800,",
+           "materials[0].friction_angle", "95");
+    EXPECT("\"model\": \"linear_elastic\", \"density\": 7800,",
+           "\"model\": \"mohr_coulomb\", \"cohesion\": -1, \"friction_angle\": 30, \"density\": 7800,",
+           "materials[0].cohesion", "-1");
+    EXPECT("\"model\": \"linear_elastic\", \"density\": 7800,",
+           "\"model\": \"mohr_coulomb\", \"cohesion\": 1, \"friction_angle\": 30, \"dilatancy_angle\": 40, "
+           "\"density\": 7800,",
+           "materials[0].dilatancy_angle", "40");
+    EXPECT("\"model\": \"linear_elastic\", \"density\": 7800,",
+           "\"model\": \"drucker_prager\", \"cohesion\": 1, \"friction_angle\": 30, \"cone_fit\": 2, "
+           "\"density\": 7800,",
+           "materials[0].cone_fit", "2");
+}
+
+static void never_crashes_on_truncations(void **st)
+{
+    (void)st;
+    /* every prefix of a valid case is invalid input, never a crash */
+    for (size_t n = 0; n + 2 < strlen(base); n += 7) {
+        pm_case c;
+        int rc = pm_case_load_buffer(base, n, "t.json", &c);
+        assert_int_equal(rc, PM_EINPUT);
+        pm_case_free(&c);
+    }
+}
+
+static void driver_files_load(void **st)
+{
+    (void)st;
+    const char *good = "{ \"material\": { \"model\": \"mohr_coulomb\", \"density\": 2000, \"youngs_modulus\": 2e7,"
+                       " \"poisson_ratio\": 0.3, \"cohesion\": 1e4, \"friction_angle\": 30 },"
+                       " \"path\": { \"type\": \"triaxial\", \"confining_pressure\": 1e5, \"axial_strain\": 0.05,"
+                       " \"steps\": 500 } }";
+    FILE *f = fopen("driver_test.json", "w");
+    assert_non_null(f);
+    fputs(good, f);
+    fclose(f);
+    pm_driver d;
+    assert_int_equal(pm_driver_load("driver_test.json", &d), PM_OK);
+    assert_int_equal(d.path, PM_PATH_TRIAXIAL);
+    assert_int_equal(d.steps, 500);
+    assert_true(d.stress0[0] == -1e5 && d.stress0[2] == -1e5);
+    pm_driver_free(&d);
+    f = fopen("driver_test.json", "w");
+    fputs("{ \"material\": { \"model\": \"von_mises\", \"density\": 1, \"youngs_modulus\": 1, \"poisson_ratio\": 0.3,"
+          " \"yield_stress\": 1 }, \"path\": { \"type\": \"triaxal\" } }", f);
+    fclose(f);
+    assert_int_equal(pm_driver_load("driver_test.json", &d), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "path.type"));
+    assert_non_null(strstr(pm_error_message(), "did you mean 'triaxial'"));
+    pm_driver_free(&d);
+    remove("driver_test.json");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(valid_case_loads),
+        cmocka_unit_test(defaults_apply),
+        cmocka_unit_test(syntax_error_names_line_and_column),
+        cmocka_unit_test(unknown_keys_suggest),
+        cmocka_unit_test(missing_and_mistyped_keys_name_their_path),
+        cmocka_unit_test(physical_nonsense_is_refused),
+        cmocka_unit_test(plastic_parameters_are_checked),
+        cmocka_unit_test(never_crashes_on_truncations),
+        cmocka_unit_test(driver_files_load),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
