@@ -19,7 +19,23 @@ status=$?
   grep -o 'VERIFY|.*' "$log" | sed 's/^VERIFY//; s/$/|/'
   echo
   [ -f docs/verification-notes.md ] && cat docs/verification-notes.md
+  echo
+  echo "## Figures"
+  echo
+  for png in "$BUILD"/tests/*.png; do
+    case $(basename "$png") in test_*) continue;; esac
+    name=$(basename "$png" .png)
+    echo "### $name"
+    echo
+    echo "![$name](img/verification/$name.png)"
+    echo
+  done
 } > docs/verification.md
+mkdir -p docs/img/verification
+for png in "$BUILD"/tests/*.png; do
+  case $(basename "$png") in test_*) continue;; esac
+  cp "$png" docs/img/verification/
+done
 echo "wrote docs/verification.md"
 grep -q '|FAIL' "$log" && { echo "some figures are outside their tolerance"; exit 1; }
 exit $status

@@ -1,5 +1,6 @@
 #include "verify_util.h"
 
+#include "io/plot.h"
 #include "pmech/error.h"
 
 #include <math.h>
@@ -112,4 +113,35 @@ void vu_write_csv(const char *path, const char *header, const double *data, size
         for (int c = 0; c < ncol; c++)
             fprintf(f, "%.12g%c", data[r * ncol + c], c + 1 < ncol ? ',' : '\n');
     fclose(f);
+}
+
+void vu_plot_history(const char *png, const char *title, const char *ylabel, const double *t, const double *v,
+                     size_t n, const char *label, const double *ref, const char *ref_label)
+{
+    pm_plot_series s[2];
+    memset(s, 0, sizeof s);
+    s[0].x = t;
+    s[0].y = v;
+    s[0].n = n;
+    s[0].label = label;
+    size_t ns = 1;
+    if (ref) {
+        s[1].x = t;
+        s[1].y = ref;
+        s[1].n = n;
+        s[1].label = ref_label;
+        s[1].dashed = 1;
+        s[1].rgb[0] = 0.2;
+        s[1].rgb[1] = 0.2;
+        s[1].rgb[2] = 0.2;
+        ns = 2;
+    }
+    pm_plot_opts o;
+    memset(&o, 0, sizeof o);
+    o.title = title;
+    o.xlabel = "time (s)";
+    o.ylabel = ylabel;
+    o.legend = 1;
+    if (pm_plot_lines(png, s, ns, &o) != 0)
+        fprintf(stderr, "plot %s: %s\n", png, pm_error_message());
 }

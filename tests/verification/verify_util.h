@@ -41,4 +41,11 @@ double vu_now(void);
 /** Write a CSV file of @p ncol columns (header comma separated) next to the test's working dir. */
 void vu_write_csv(const char *path, const char *header, const double *data, size_t nrow, int ncol);
 
+/**
+ * Plot a time history against a reference curve into PNG @p png (in the working directory;
+ * tools/verify.sh copies *.png into docs/img/verification).
+ */
+void vu_plot_history(const char *png, const char *title, const char *ylabel, const double *t, const double *v,
+                     size_t n, const char *label, const double *ref, const char *ref_label);
+
 #endif
