@@ -35,7 +35,7 @@ asan: deps
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) -LE fuzz
 
 bench: build
-	sh bench/run.sh $(BUILD)/pmech
+	sh bench/run.sh $(BUILD)/pmech --write
 
 clean:
 	rm -rf $(BUILD) build-asan
