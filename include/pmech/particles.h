@@ -66,7 +66,7 @@ size_t pm_particles_bytes_per_particle(size_t n_state);
  * @brief Reorder all particle arrays by @p perm (new index i takes old index perm[i]).
  * @param p particles
  * @param perm permutation of 0..n-1
- * @param scratch workspace of at least n * max(n_state, PM_NF) doubles
+ * @param scratch workspace of at least n doubles
  * @param iscratch workspace of at least n int32_t
  * @return PM_OK
  */

@@ -58,6 +58,11 @@ typedef struct pm_sim {
     long step;           /**< steps taken */
     double dt_next;      /**< step to take next */
     double max_wave;     /**< largest c + |v| over particles at the last stress update */
+    int sort_interval;   /**< steps between sorts of the particles by cell (0: never) */
+    uint32_t *perm;      /**< sort workspace: permutation, n */
+    uint32_t *bucket;    /**< sort workspace: particles per cell, n_cells + 1 */
+    double *scratch;     /**< sort workspace: n doubles */
+    int32_t *iscratch;   /**< sort workspace: n ints */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
 } pm_sim;
 
@@ -88,6 +93,12 @@ int pm_explicit_step(pm_sim *s, double dt);
  * @return PM_OK, or PM_ESIM naming the particle that failed
  */
 int pm_sim_update_stresses(pm_sim *s, const double *nodal_v, double dt);
+
+/**
+ * @brief Reorder the particles by background cell (counting sort on p->cell, stable), so that
+ *        particles that share nodes are neighbours in memory. Needs current cells (connect).
+ */
+void pm_sim_sort_particles(pm_sim *s);
 
 /**
  * @brief The stable step cfl * h_min / (c + v_max) for the current state.

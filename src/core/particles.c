@@ -70,11 +70,15 @@ void pm_particles_free(pm_particles *p)
     memset(p, 0, sizeof *p);
 }
 
+/* One component at a time, so the workspace is one double per particle whatever the width. */
 static void permute_doubles(double *a, size_t w, size_t n, const uint32_t *perm, double *scratch)
 {
-    for (size_t i = 0; i < n; i++)
-        memcpy(scratch + i * w, a + (size_t)perm[i] * w, w * sizeof(double));
-    memcpy(a, scratch, n * w * sizeof(double));
+    for (size_t c = 0; c < w; c++) {
+        for (size_t i = 0; i < n; i++)
+            scratch[i] = a[(size_t)perm[i] * w + c];
+        for (size_t i = 0; i < n; i++)
+            a[i * w + c] = scratch[i];
+    }
 }
 
 static void permute_ints(int32_t *a, size_t n, const uint32_t *perm, int32_t *scratch)

@@ -618,6 +618,9 @@ int pm_explicit_step(pm_sim *s, double dt)
     int rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
+    /* particles drift apart in memory as they move; a periodic sort keeps the scatters local */
+    if (s->sort_interval > 0 && s->step % s->sort_interval == 0 && s->grid.n_cells < UINT32_MAX)
+        pm_sim_sort_particles(s);
     switch (s->c->analysis.scheme) {
     case PM_SCHEME_USF: rc = step_usf(s, dt); break;
     case PM_SCHEME_USL: rc = step_usl_musl(s, dt, 0); break;

@@ -163,6 +163,15 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads)) != 0 ||
         (rc = apply_bcs(c, &s->grid, &s->nd)) != 0)
         goto fail;
+    s->sort_interval = 50;
+    s->perm = malloc((s->p.n ? s->p.n : 1) * sizeof(uint32_t));
+    s->bucket = malloc((s->grid.n_cells + 1) * sizeof(uint32_t));
+    s->scratch = malloc((s->p.n ? s->p.n : 1) * sizeof(double));
+    s->iscratch = malloc((s->p.n ? s->p.n : 1) * sizeof(int32_t));
+    if (!s->perm || !s->bucket || !s->scratch || !s->iscratch) {
+        rc = pm_error_set(PM_ENOMEM, "out of memory for the particle sort workspace");
+        goto fail;
+    }
     rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc) {
         pm_error_prefix(PM_EINPUT, "%s: at t = 0: ", c->file);
@@ -183,6 +192,10 @@ void pm_sim_destroy(pm_sim *s)
         return;
     pm_approx_destroy(s->approx);
     pm_particles_free(&s->p);
+    free(s->perm);
+    free(s->bucket);
+    free(s->scratch);
+    free(s->iscratch);
     free_nodal(&s->nd);
     pm_grid_free(&s->grid);
     free(s);
@@ -239,4 +252,24 @@ void pm_sim_energy(const pm_sim *s, double *kinetic, double *strain, double *gra
     *kinetic = ke;
     *strain = se;
     *gravity = ge;
+}
+
+void pm_sim_sort_particles(pm_sim *s)
+{
+    pm_particles *p = &s->p;
+    const size_t nc = s->grid.n_cells;
+    uint32_t *b = s->bucket;
+    memset(b, 0, (nc + 1) * sizeof(uint32_t));
+    for (size_t i = 0; i < p->n; i++)
+        b[p->cell[i] + 1]++;
+    for (size_t c = 0; c < nc; c++)
+        b[c + 1] += b[c];
+    int sorted = 1;
+    for (size_t i = 0; i < p->n; i++) {
+        uint32_t at = b[p->cell[i]]++;
+        s->perm[at] = (uint32_t)i;
+        sorted &= at == i;
+    }
+    if (!sorted)
+        pm_particles_permute(p, s->perm, s->scratch, s->iscratch);
 }

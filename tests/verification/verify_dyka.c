@@ -66,6 +66,7 @@ static history run(double v0, int cells_x, const char *scheme, double *seconds)
     double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);
     size_t ip = vu_nearest(s, 0.0, 0.005);
+    const double key[2] = {s->p.x0[2 * ip], s->p.x0[2 * ip + 1]};
     history h = {0};
     push(&h, 0, s->p.v[2 * ip]);
     while (s->t < c.analysis.end_time) {
@@ -73,6 +74,7 @@ static history run(double v0, int cells_x, const char *scheme, double *seconds)
             fprintf(stderr, "step failed\n");
             exit(1);
         }
+        ip = vu_track(s, ip, key);
         push(&h, s->t, s->p.v[2 * ip]);
     }
     *seconds = vu_now() - t0;

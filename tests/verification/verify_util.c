@@ -60,6 +60,17 @@ size_t vu_nearest(const pm_sim *s, double x, double y)
     return best;
 }
 
+size_t vu_track(const pm_sim *s, size_t ip, const double key[2])
+{
+    if (ip < s->p.n && s->p.x0[2 * ip] == key[0] && s->p.x0[2 * ip + 1] == key[1])
+        return ip;
+    for (size_t i = 0; i < s->p.n; i++)
+        if (s->p.x0[2 * i] == key[0] && s->p.x0[2 * i + 1] == key[1])
+            return i;
+    fprintf(stderr, "lost the particle that started at (%g, %g)\n", key[0], key[1]);
+    exit(1);
+}
+
 void vu_body_mean(const pm_sim *s, int b, double v[2], double x[2])
 {
     double m = 0;

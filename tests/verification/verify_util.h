@@ -24,6 +24,12 @@ double vu_dt(const pm_sim *s);
 /** Index of the particle nearest to @p x at the start (ties: lowest index). */
 size_t vu_nearest(const pm_sim *s, double x, double y);
 
+/**
+ * Follow a particle across the periodic sorts that reorder the arrays: @p ip is its index, @p key
+ * its initial position (p->x0 identifies a particle). Returns the current index.
+ */
+size_t vu_track(const pm_sim *s, size_t ip, const double key[2]);
+
 /** Mass-weighted mean velocity and centre of mass of body @p b. */
 void vu_body_mean(const pm_sim *s, int b, double v[2], double x[2]);
 

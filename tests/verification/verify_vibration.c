@@ -19,12 +19,14 @@ static double measure(pm_case *c, double *secs)
     const double t0 = vu_now();
     pm_sim *s = vu_sim(c, 1);
     size_t ip = vu_nearest(s, L, 0.005);
+    const double key[2] = {s->p.x0[2 * ip], s->p.x0[2 * ip + 1]};
     double crossings[16];
     int nc = 0;
     double tp = 0, vp = s->p.v[2 * ip];
     while (s->t < c->analysis.end_time) {
         if (pm_explicit_step(s, vu_dt(s)) != 0)
             return NAN;
+        ip = vu_track(s, ip, key);
         double v = s->p.v[2 * ip];
         if (vp > 0 && v <= 0 && nc < 16)
             crossings[nc++] = tp + (s->t - tp) * vp / (vp - v);
