@@ -23,6 +23,13 @@ typedef struct pm_node_set {
     double normal[2];  /**< outward unit normal */
 } pm_node_set;
 
+/** A named set of cells: a 2-D physical group of a Gmsh mesh (for `gmsh_group` body shapes). */
+typedef struct pm_cell_set {
+    char name[64];     /**< physical group name */
+    size_t n;          /**< number of cells */
+    int32_t *cells;    /**< cell indices */
+} pm_cell_set;
+
 /** A background grid. Structured rectangle grids keep their spacing for O(1) point location. */
 typedef struct pm_grid {
     pm_element element;      /**< cell type */
@@ -39,6 +46,9 @@ typedef struct pm_grid {
     int cells[2];            /**< structured: cells along x and y */
     size_t n_sets;           /**< named node sets */
     pm_node_set *sets;       /**< the sets (x_min, x_max, y_min, y_max at least) */
+    size_t n_cell_sets;      /**< named cell sets (Gmsh 2-D physical groups) */
+    pm_cell_set *cell_sets;  /**< the cell sets */
+    void *locator;           /**< unstructured grids: private point-location index (bins + neighbours) */
 } pm_grid;
 
 /**
@@ -63,6 +73,54 @@ void pm_grid_free(pm_grid *g);
  * @return cell index, or -1 if the point is outside the grid
  */
 int32_t pm_grid_locate(const pm_grid *g, const double xp[2]);
+
+/**
+ * @brief Find the cell containing @p xp, starting from cell @p hint (e.g. the particle's cell at
+ *        the previous step). Unstructured grids check the hint and walk across edges towards the
+ *        point for a few steps before falling back to the bins; structured grids ignore the hint.
+ * @param g grid
+ * @param xp point
+ * @param hint a cell index, or -1
+ * @return cell index, or -1 if the point is outside the grid
+ */
+int32_t pm_grid_locate_from(const pm_grid *g, const double xp[2], int32_t hint);
+
+/**
+ * @brief Build an unstructured grid from nodes and cells (copied). Cells are reoriented
+ *        counter-clockwise; the bounding box, h_min and the point locator are computed. The grid has
+ *        the node sets x_min, x_max, y_min, y_max of the nodes on its bounding box sides (those
+ *        that have nodes).
+ * @param g grid to fill
+ * @param n_nodes number of nodes
+ * @param x node coordinates (2 per node)
+ * @param n_cells number of cells
+ * @param conn connectivity (3 or 4 node indices per cell)
+ * @param element PM_TRI3 or PM_QUAD4
+ * @return PM_OK, PM_EINPUT (node index out of range, degenerate cell), PM_ENOMEM
+ */
+int pm_grid_unstructured(pm_grid *g, size_t n_nodes, const double *x, size_t n_cells, const int32_t *conn,
+                         pm_element element);
+
+/**
+ * @brief Read a Gmsh mesh (MSH 4.1 ASCII) into an unstructured grid: 3-node triangles and
+ *        4-node quads (a mesh with both has its quads split into two triangles). Every 1-D (and 0-D)
+ *        physical group becomes a node set with the group's name (outward normal recorded when its
+ *        nodes lie on one straight line), every 2-D physical group a cell set. Nodes used by no
+ *        2-D element are dropped.
+ * @param g grid to fill
+ * @param path the .msh file
+ * @return PM_OK, PM_EIO (cannot read), PM_EINPUT (message names path:line), PM_ENOMEM
+ */
+int pm_grid_gmsh_read(pm_grid *g, const char *path);
+
+/**
+ * @brief Add a named node set (nodes copied).
+ * @return index of the set, or a negative status
+ */
+int pm_grid_add_node_set(pm_grid *g, const char *name, size_t n, const int32_t *nodes, const double normal[2]);
+
+/** @brief The cell set called @p name, or NULL. */
+const pm_cell_set *pm_grid_find_cell_set(const pm_grid *g, const char *name);
 
 /** @brief The node set called @p name, or NULL. */
 const pm_node_set *pm_grid_find_set(const pm_grid *g, const char *name);

@@ -1,6 +1,8 @@
 #include "pmech/grid.h"
 #include "pmech/error.h"
 
+#include "mesh_internal.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,6 +10,10 @@
 
 void pm_grid_free(pm_grid *g)
 {
+    pm_grid_locator_free(g->locator);
+    for (size_t i = 0; i < g->n_cell_sets; i++)
+        free(g->cell_sets[i].cells);
+    free(g->cell_sets);
     free(g->x);
     free(g->conn);
     for (size_t i = 0; i < g->n_sets; i++)
@@ -113,8 +119,13 @@ int pm_grid_rectangle(pm_grid *g, const double origin[2], const double size[2], 
 
 int32_t pm_grid_locate(const pm_grid *g, const double xp[2])
 {
+    return pm_grid_locate_from(g, xp, -1);
+}
+
+int32_t pm_grid_locate_from(const pm_grid *g, const double xp[2], int32_t hint)
+{
     if (!g->structured)
-        return -1;
+        return g->locator ? pm_grid_locator_find(g, xp, hint) : -1;
     double fx = (xp[0] - g->origin[0]) / g->h[0];
     double fy = (xp[1] - g->origin[1]) / g->h[1];
     if (!(fx >= 0 && fy >= 0 && fx <= g->cells[0] && fy <= g->cells[1]))
