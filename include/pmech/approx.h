@@ -38,7 +38,18 @@ typedef struct pm_approx_ops {
     int (*eval)(const pm_approx *a, const pm_particles *p, size_t ip, pm_stencil *s);
     /** Free private data (may be NULL). */
     void (*destroy)(pm_approx *a);
+    /**
+     * Check that the kind fits the grid and set up private data from pm_approx::opts (may be
+     * NULL). Called once by pm_approx_create_opts(); returns PM_OK or PM_EINPUT/PM_ENOMEM.
+     */
+    int (*init)(pm_approx *a);
 } pm_approx_ops;
+
+/** Tuning keys of the case file that approximations read (INPUT.md `lme_gamma`, `support_radius`). */
+typedef struct pm_approx_opts {
+    double lme_gamma;       /**< LME: gamma = beta h^2; NAN = the default (1.8) */
+    double support_radius;  /**< meshfree/LME support radius in metres; NAN = from the kind's tolerance */
+} pm_approx_opts;
 
 /** An approximation bound to a grid (or node cloud). */
 struct pm_approx {
@@ -47,6 +58,7 @@ struct pm_approx {
     int fast_linear_quad;      /**< 1: linear quad4 on a structured grid; solvers may inline it */
     int n_threads;             /**< OpenMP threads for connect (set by the owner; 1 by default) */
     void *data;                /**< private data of the kind */
+    pm_approx_opts opts;       /**< tuning keys given at creation */
 };
 
 /**
@@ -57,6 +69,16 @@ struct pm_approx {
  * @return PM_OK, PM_EINPUT for an unknown name or one that does not fit the grid
  */
 int pm_approx_create(const char *name, const pm_grid *g, pm_approx **out);
+
+/**
+ * @brief Create the approximation called @p name on grid @p g with the case's tuning keys.
+ * @param name a `shape_function` value
+ * @param g grid (must outlive the approximation)
+ * @param opts tuning keys (NULL: all defaults)
+ * @param out receives a new approximation; free with pm_approx_destroy()
+ * @return PM_OK, PM_EINPUT for an unknown name or one that does not fit the grid, PM_ENOMEM
+ */
+int pm_approx_create_opts(const char *name, const pm_grid *g, const pm_approx_opts *opts, pm_approx **out);
 
 /** @brief Destroy an approximation (NULL is fine). */
 void pm_approx_destroy(pm_approx *a);

@@ -2,15 +2,17 @@
 #include "pmech/approx.h"
 #include "pmech/error.h"
 
+#include "shape_internal.h"
+
 #include <math.h>
 
-static int linear_connect(pm_approx *a, pm_particles *p)
+int pm_shape_connect_cells(pm_approx *a, pm_particles *p)
 {
     const pm_grid *g = a->grid;
     long bad = -1;
 #pragma omp parallel for schedule(static) reduction(max : bad) num_threads(a->n_threads)
     for (long i = 0; i < (long)p->n; i++) {
-        int32_t c = pm_grid_locate(g, p->x + 2 * i);
+        int32_t c = pm_grid_locate_from(g, p->x + 2 * i, p->cell[i]);
         p->cell[i] = c;
         if (c < 0 && i > bad)
             bad = i;
@@ -62,14 +64,17 @@ static int linear_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_
         return pm_error_set(PM_ESIM, "particle %zu is outside the grid", ip);
     if (g->element == PM_TRI3)
         tri3_eval(g, c, p->x + 2 * ip, s);
-    else
+    else if (g->structured)
         quad4_eval(g, c, p->x + 2 * ip, s);
+    else if (pm_quad4_iso_eval(g, c, p->x + 2 * ip, s) != 0)
+        return pm_error_set(PM_ESIM, "particle %zu: no inverse isoparametric map in cell %d (degenerate quad?)", ip,
+                            (int)c);
     return PM_OK;
 }
 
 const pm_approx_ops pm_approx_linear_ops = {
     .name = "linear",
-    .connect = linear_connect,
+    .connect = pm_shape_connect_cells,
     .eval = linear_eval,
     .destroy = NULL,
 };

@@ -141,7 +141,8 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     int rc = build_grid(c, &s->grid);
     if (rc)
         goto fail;
-    rc = pm_approx_create(c->shape_function, &s->grid, &s->approx);
+    pm_approx_opts aopts = {.lme_gamma = c->lme_gamma, .support_radius = c->support_radius};
+    rc = pm_approx_create_opts(c->shape_function, &s->grid, &aopts, &s->approx);
     if (rc) {
         pm_error_prefix(rc, "%s: shape_function: ", c->file);
         goto fail;

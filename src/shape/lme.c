@@ -1,0 +1,294 @@
+/*
+ * Local maximum-entropy (LME) approximants on the grid nodes (Arroyo & Ortiz 2006; seed 003
+ * section 2.3, eqs. 33-39). For a point x the shape functions are
+ *     N_I = exp(-beta |x - x_I|^2 + lambda* . (x - x_I)) / Z,   gamma = beta h^2,
+ * where lambda* minimises log Z (Newton's method with a backtracking line search; converged when
+ * |sum N_I (x - x_I)| <= 1e-14 h, i.e. linear fields are reproduced to round-off), and
+ *     grad N_I = -N_I J^-1 (x - x_I),   J = sum N_I (x - x_I)(x - x_I)^T     (eq. 39 form).
+ *
+ * Support: the nodes within R of the point, R = h sqrt(-ln(1e-6) / gamma) (the radius where the
+ * Gaussian prior falls to 1e-6), but at least 1.5 h so that the corners of the point's own cell
+ * are always in (needed when gamma is large). The case key `support_radius` (metres) replaces R.
+ * If more than PM_STENCIL_MAX (64) nodes are within R, the 64 nearest are used.
+ *
+ * gamma comes from the case key `lme_gamma` (default 1.8, Arroyo & Ortiz's usual choice; seed 003
+ * uses 3 for the soil block, 0.8 for GMM). Large gamma tends to the linear finite-element
+ * functions (bilinear Q4 on a square grid: max-entropy among the four cocircular corners), small
+ * gamma widens the support. h is the cell size of a structured grid; on an unstructured grid the
+ * mean cell size sqrt(mean area) (sqrt(4 A / sqrt 3) for triangles, the side of an equilateral
+ * triangle of that area).
+ *
+ * Neighbour search: nodes are binned once into squares of side R; a point visits the 3 x 3 bins
+ * around its own.
+ */
+#include "pmech/approx.h"
+#include "pmech/error.h"
+
+#include "shape_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define LME_DEFAULT_GAMMA 1.8
+#define LME_PRIOR_TOL 1e-6
+#define LME_MAX_CAND 1024
+#define LME_MAX_IT 100
+
+typedef struct lme_data {
+    double gamma, beta, h, R;
+    double lo[2], bin;     /* bins: origin and side */
+    int nb[2];             /* bins per direction */
+    int32_t *start;        /* nb[0] * nb[1] + 1 */
+    int32_t *nodes;        /* node indices sorted by bin */
+} lme_data;
+
+static void lme_destroy(pm_approx *a)
+{
+    lme_data *d = a->data;
+    if (d) {
+        free(d->start);
+        free(d->nodes);
+        free(d);
+    }
+    a->data = NULL;
+}
+
+static double grid_spacing(const pm_grid *g)
+{
+    if (g->structured)
+        return sqrt(g->h[0] * g->h[1]);
+    double area = 0;
+    const int npc = g->nodes_per_cell;
+    for (size_t c = 0; c < g->n_cells; c++) {
+        const int32_t *v = g->conn + (size_t)npc * c;
+        double s = 0;
+        for (int k = 0; k < npc; k++) {
+            const double *p = g->x + 2 * v[k], *q = g->x + 2 * v[(k + 1) % npc];
+            s += p[0] * q[1] - q[0] * p[1];
+        }
+        area += 0.5 * fabs(s);
+    }
+    double mean = area / (double)g->n_cells;
+    return g->element == PM_TRI3 ? sqrt(4.0 * mean / sqrt(3.0)) : sqrt(mean);
+}
+
+static int lme_init(pm_approx *a)
+{
+    const pm_grid *g = a->grid;
+    lme_data *d = calloc(1, sizeof *d);
+    if (!d)
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    a->data = d;
+    d->gamma = a->opts.lme_gamma > 0 ? a->opts.lme_gamma : LME_DEFAULT_GAMMA;
+    d->h = grid_spacing(g);
+    d->beta = d->gamma / (d->h * d->h);
+    d->R = a->opts.support_radius > 0 ? a->opts.support_radius
+                                      : fmax(d->h * sqrt(-log(LME_PRIOR_TOL) / d->gamma), 1.5 * d->h);
+    d->bin = d->R;
+    for (int k = 0; k < 2; k++) {
+        d->lo[k] = g->lo[k];
+        double nb = floor((g->hi[k] - g->lo[k]) / d->bin) + 1;
+        if (nb > 1e6)
+            return pm_error_set(PM_EINPUT, "lme: support radius %g is too small for the grid", d->R);
+        d->nb[k] = (int)nb;
+    }
+    size_t nbins = (size_t)d->nb[0] * (size_t)d->nb[1];
+    d->start = calloc(nbins + 1, sizeof(int32_t));
+    d->nodes = malloc((g->n_nodes ? g->n_nodes : 1) * sizeof(int32_t));
+    if (!d->start || !d->nodes)
+        return pm_error_set(PM_ENOMEM, "out of memory for the LME node bins");
+    for (size_t i = 0; i < g->n_nodes; i++) {
+        int bx = (int)((g->x[2 * i] - d->lo[0]) / d->bin), by = (int)((g->x[2 * i + 1] - d->lo[1]) / d->bin);
+        bx = bx < 0 ? 0 : (bx >= d->nb[0] ? d->nb[0] - 1 : bx);
+        by = by < 0 ? 0 : (by >= d->nb[1] ? d->nb[1] - 1 : by);
+        d->start[(size_t)by * d->nb[0] + bx + 1]++;
+    }
+    for (size_t b = 0; b < nbins; b++)
+        d->start[b + 1] += d->start[b];
+    int32_t *fill = malloc(nbins * sizeof(int32_t));
+    if (!fill)
+        return pm_error_set(PM_ENOMEM, "out of memory for the LME node bins");
+    memcpy(fill, d->start, nbins * sizeof(int32_t));
+    for (size_t i = 0; i < g->n_nodes; i++) {
+        int bx = (int)((g->x[2 * i] - d->lo[0]) / d->bin), by = (int)((g->x[2 * i + 1] - d->lo[1]) / d->bin);
+        bx = bx < 0 ? 0 : (bx >= d->nb[0] ? d->nb[0] - 1 : bx);
+        by = by < 0 ? 0 : (by >= d->nb[1] ? d->nb[1] - 1 : by);
+        d->nodes[fill[(size_t)by * d->nb[0] + bx]++] = (int32_t)i;
+    }
+    free(fill);
+    return PM_OK;
+}
+
+/* log Z and the normalised weights at lambda. */
+static double log_z(int n, const double (*d)[2], double beta, const double lam[2], double *p)
+{
+    double fmax = -INFINITY;
+    for (int i = 0; i < n; i++) {
+        p[i] = -beta * (d[i][0] * d[i][0] + d[i][1] * d[i][1]) + lam[0] * d[i][0] + lam[1] * d[i][1];
+        fmax = fmax > p[i] ? fmax : p[i];
+    }
+    double z = 0;
+    for (int i = 0; i < n; i++) {
+        p[i] = exp(p[i] - fmax);
+        z += p[i];
+    }
+    for (int i = 0; i < n; i++)
+        p[i] /= z;
+    return fmax + log(z);
+}
+
+/* Residual r = sum p d and Hessian J = sum p d d^T - r r^T, formed as sum p (d - r)(d - r)^T: the
+ * difference form loses all digits when the weights concentrate on one node (large gamma). */
+static void resid_hess(int n, const double (*d)[2], const double *p, double r[2], double J[3])
+{
+    r[0] = r[1] = J[0] = J[1] = J[2] = 0;
+    for (int i = 0; i < n; i++) {
+        r[0] += p[i] * d[i][0];
+        r[1] += p[i] * d[i][1];
+    }
+    for (int i = 0; i < n; i++) {
+        const double a = d[i][0] - r[0], b = d[i][1] - r[1];
+        J[0] += p[i] * a * a;
+        J[1] += p[i] * a * b;
+        J[2] += p[i] * b * b;
+    }
+}
+
+int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N,
+                 double (*dN)[2])
+{
+    double r[2], J[3], dmax = 0;
+    for (int i = 0; i < n; i++)
+        dmax = fmax(dmax, sqrt(d[i][0] * d[i][0] + d[i][1] * d[i][1]));
+    const double cap = 4 * beta * dmax + 1 / dmax;
+    double lz = log_z(n, d, beta, lambda, N), rprev = INFINITY;
+    int it = 0;
+    for (;; it++) {
+        resid_hess(n, d, N, r, J);
+        const double rnow = sqrt(r[0] * r[0] + r[1] * r[1]);
+        /* converged; or within 100 tol and no longer falling (round-off floor: with large gamma the
+         * exponents reach ~ gamma and carry absolute errors ~ 1e-16 gamma) */
+        if (rnow <= tol || (rnow <= 100 * tol && rnow > 0.5 * rprev))
+            break;
+        rprev = rnow;
+        if (it == LME_MAX_IT)
+            return -1;
+        double det = J[0] * J[2] - J[1] * J[1];
+        double step[2];
+        if (det > 1e-300 && isfinite(det)) {
+            step[0] = -(J[2] * r[0] - J[1] * r[1]) / det;
+            step[1] = -(J[0] * r[1] - J[1] * r[0]) / det;
+        } else { /* degenerate Hessian: steepest descent */
+            step[0] = -r[0] * beta;
+            step[1] = -r[1] * beta;
+        }
+        /* a step longer than a few beta * (node distance) only happens where J is tiny (the weight
+         * sits on one node, large gamma); cap it so that the line search starts at a useful scale */
+        const double sn = sqrt(step[0] * step[0] + step[1] * step[1]);
+        if (sn > cap) {
+            step[0] *= cap / sn;
+            step[1] *= cap / sn;
+        }
+        /* backtracking on log Z (convex); the gradient of log Z is r */
+        double slope = r[0] * step[0] + r[1] * step[1], t = 1.0, lam[2];
+        int accepted = 0;
+        for (int ls = 0; ls < 60; ls++) {
+            lam[0] = lambda[0] + t * step[0];
+            lam[1] = lambda[1] + t * step[1];
+            double lz_new = log_z(n, d, beta, lam, N);
+            /* near the solution the predicted decrease of log Z (the Newton decrement) drowns in its
+             * round-off: take the full Newton step there */
+            if (lz_new <= lz + 1e-4 * t * slope || -slope < 1e-10 * (1 + fabs(lz))) {
+                lz = lz_new;
+                accepted = 1;
+                break;
+            }
+            t *= 0.5;
+        }
+        if (!accepted) {
+            log_z(n, d, beta, lambda, N);
+            return -1;
+        }
+        lambda[0] = lam[0];
+        lambda[1] = lam[1];
+    }
+    /* gradients, eq. 39: grad N_I = -N_I J^-1 d_I */
+    double det = J[0] * J[2] - J[1] * J[1];
+    if (!(det > 0))
+        return -1;
+    const double i0 = J[2] / det, i1 = -J[1] / det, i2 = J[0] / det;
+    for (int i = 0; i < n; i++) {
+        dN[i][0] = -N[i] * (i0 * d[i][0] + i1 * d[i][1]);
+        dN[i][1] = -N[i] * (i1 * d[i][0] + i2 * d[i][1]);
+    }
+    return it;
+}
+
+static int lme_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_stencil *s)
+{
+    const pm_grid *g = a->grid;
+    const lme_data *ld = a->data;
+    const double *x = p->x + 2 * ip;
+    if (p->cell[ip] < 0)
+        return pm_error_set(PM_ESIM, "particle %zu is outside the grid", ip);
+    int32_t cand[LME_MAX_CAND];
+    double dist2[LME_MAX_CAND];
+    int nc = 0;
+    const double R2 = ld->R * ld->R;
+    int bx = (int)floor((x[0] - ld->lo[0]) / ld->bin), by = (int)floor((x[1] - ld->lo[1]) / ld->bin);
+    for (int jy = by - 1; jy <= by + 1; jy++) {
+        if (jy < 0 || jy >= ld->nb[1])
+            continue;
+        for (int jx = bx - 1; jx <= bx + 1; jx++) {
+            if (jx < 0 || jx >= ld->nb[0])
+                continue;
+            size_t b = (size_t)jy * ld->nb[0] + jx;
+            for (int32_t k = ld->start[b]; k < ld->start[b + 1]; k++) {
+                int32_t nd = ld->nodes[k];
+                double dx = x[0] - g->x[2 * nd], dy = x[1] - g->x[2 * nd + 1], r2 = dx * dx + dy * dy;
+                if (r2 > R2 || nc == LME_MAX_CAND)
+                    continue;
+                cand[nc] = nd;
+                dist2[nc++] = r2;
+            }
+        }
+    }
+    if (nc > PM_STENCIL_MAX) { /* keep the nearest PM_STENCIL_MAX (partial selection) */
+        for (int i = 0; i < PM_STENCIL_MAX; i++) {
+            int m = i;
+            for (int j = i + 1; j < nc; j++)
+                if (dist2[j] < dist2[m] || (dist2[j] == dist2[m] && cand[j] < cand[m]))
+                    m = j;
+            int32_t tc = cand[i]; cand[i] = cand[m]; cand[m] = tc;
+            double td = dist2[i]; dist2[i] = dist2[m]; dist2[m] = td;
+        }
+        nc = PM_STENCIL_MAX;
+    }
+    if (nc < 3)
+        return pm_error_set(PM_ESIM, "lme: particle %zu at (%g, %g) has only %d nodes within the support radius %g",
+                            ip, x[0], x[1], nc, ld->R);
+    double d[PM_STENCIL_MAX][2];
+    for (int i = 0; i < nc; i++) {
+        d[i][0] = x[0] - g->x[2 * cand[i]];
+        d[i][1] = x[1] - g->x[2 * cand[i] + 1];
+    }
+    double lam[2] = {0, 0};
+    int it = pm_lme_solve(nc, (const double (*)[2])d, ld->beta, PM_LME_TOL * ld->h, lam, s->N, s->dN);
+    if (it < 0)
+        return pm_error_set(PM_ESIM,
+                            "lme: the Newton solve for lambda did not converge for particle %zu at (%g, %g) "
+                            "(on the edge of the grid's node cloud?)",
+                            ip, x[0], x[1]);
+    s->n = nc;
+    memcpy(s->node, cand, (size_t)nc * sizeof(int32_t));
+    return PM_OK;
+}
+
+const pm_approx_ops pm_approx_lme_ops = {
+    .name = "lme",
+    .connect = pm_shape_connect_cells,
+    .eval = lme_eval,
+    .destroy = lme_destroy,
+    .init = lme_init,
+};

@@ -1,0 +1,47 @@
+/* Helpers shared by the approximations in src/shape (not public). */
+#ifndef PMECH_SHAPE_INTERNAL_H
+#define PMECH_SHAPE_INTERNAL_H
+
+#include "pmech/approx.h"
+
+/**
+ * Locate the background cell of every particle into p->cell (in parallel with a->n_threads),
+ * starting each search from the particle's previous cell. Returns PM_OK or PM_ESIM naming the
+ * highest-numbered particle outside the grid.
+ */
+int pm_shape_connect_cells(pm_approx *a, pm_particles *p);
+
+/**
+ * Linear (isoparametric bilinear) shape functions of an arbitrary convex quad4 cell at xp: the
+ * inverse map (xi, eta) is found by Newton's method from the cell centre.
+ * @return 0, or -1 when the Newton iteration does not converge (degenerate cell)
+ */
+int pm_quad4_iso_eval(const pm_grid *g, int32_t cell, const double xp[2], pm_stencil *s);
+
+/**
+ * Inverse isoparametric map of quad4 cell @p cell: (xi, eta) in [-1, 1]^2 for points inside.
+ * @return number of Newton iterations (>= 0), or -1 without convergence
+ */
+int pm_quad4_inverse_map(const pm_grid *g, int32_t cell, const double xp[2], double xi[2]);
+
+/** Newton tolerance of the LME solve, relative to the node spacing h: |sum N_I (x - x_I)| <= tol h. */
+#define PM_LME_TOL 1e-14
+
+/**
+ * Local max-ent shape functions (seed 003 section 2.3) of a point at offsets d_I = x - x_I from
+ * @p n nodes: N_I = exp(-beta |d_I|^2 + lambda . d_I) / Z with lambda from Newton's method on
+ * log Z (residual r = sum N_I d_I, Hessian J = sum N_I d_I d_I^T - r r^T, backtracking line
+ * search), gradients from eq. 39, grad N_I = -N_I J^-1 d_I.
+ * @param n number of nodes (>= 3, not all on one line)
+ * @param d offsets x - x_I
+ * @param beta beta > 0
+ * @param tol absolute tolerance on |r|
+ * @param lambda in: starting guess (0, 0 is fine); out: the solution
+ * @param N receives the n values
+ * @param dN receives the n gradients
+ * @return Newton iterations taken (>= 0), or -1 if the solve did not converge in 100 iterations
+ */
+int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N,
+                 double (*dN)[2]);
+
+#endif
