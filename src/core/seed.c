@@ -67,8 +67,41 @@ static int ppc_of(const pm_case_body *b, const pm_grid *g)
     return g->element == PM_QUAD4 ? 2 : 3;
 }
 
+/* Gauss points of a general (unstructured, convex) quad: isoparametric map, weight w_i w_j det J. */
+static void iso_quad_points(const pm_grid *g, size_t cell, int n, cell_points *cp)
+{
+    const int32_t *q = g->conn + 4 * cell;
+    static const double XI[4] = {-1, 1, 1, -1}, ETA[4] = {-1, -1, 1, 1};
+    cp->n = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            const double xi = gl_x[n - 1][i], eta = gl_x[n - 1][j];
+            double x = 0, y = 0, J[4] = {0, 0, 0, 0};
+            for (int k = 0; k < 4; k++) {
+                const double *v = g->x + 2 * q[k];
+                double N = 0.25 * (1 + XI[k] * xi) * (1 + ETA[k] * eta);
+                double dxi = 0.25 * XI[k] * (1 + ETA[k] * eta), deta = 0.25 * ETA[k] * (1 + XI[k] * xi);
+                x += N * v[0];
+                y += N * v[1];
+                J[0] += dxi * v[0];
+                J[1] += deta * v[0];
+                J[2] += dxi * v[1];
+                J[3] += deta * v[1];
+            }
+            int k = cp->n++;
+            cp->x[k][0] = x;
+            cp->x[k][1] = y;
+            cp->w[k] = gl_w[n - 1][i] * gl_w[n - 1][j] * fabs(J[0] * J[3] - J[1] * J[2]);
+            cp->hs[k][0] = cp->hs[k][1] = 0.5 * sqrt(cp->w[k]);
+        }
+}
+
 static void quad_points(const pm_grid *g, size_t cell, int n, cell_points *cp)
 {
+    if (!g->structured) {
+        iso_quad_points(g, cell, n, cp);
+        return;
+    }
     const int32_t *q = g->conn + 4 * cell;
     const double *a = g->x + 2 * q[0], *c = g->x + 2 * q[2];
     double hx = c[0] - a[0], hy = c[1] - a[1];
@@ -179,12 +212,18 @@ static size_t seed_body(const pm_case *c, size_t b, const pm_grid *g, pm_particl
     shape_box(&body->shape, lo, hi);
     cell_points cp;
     size_t k = first;
-    for (size_t cell = 0; cell < g->n_cells; cell++) {
-        if (!cell_may_touch(g, cell, lo, hi))
+    /* gmsh_group: every quadrature point of the group's cells */
+    const pm_cell_set *group = NULL;
+    if (body->shape.type == PM_SHAPE_GMSH_GROUP && !(group = pm_grid_find_cell_set(g, body->shape.group)))
+        return 0;
+    const size_t n_visit = group ? group->n : g->n_cells;
+    for (size_t iv = 0; iv < n_visit; iv++) {
+        const size_t cell = group ? (size_t)group->cells[iv] : iv;
+        if (!group && !cell_may_touch(g, cell, lo, hi))
             continue;
         cell_quadrature(g, cell, n, &cp);
         for (int q = 0; q < cp.n; q++) {
-            if (!pm_shape_contains(&body->shape, cp.x[q]))
+            if (!group && !pm_shape_contains(&body->shape, cp.x[q]))
                 continue;
             if (p) {
                 const pm_material *m = &c->materials[body->material];
@@ -214,6 +253,9 @@ int pm_seed_count(const pm_case *c, const pm_grid *g, size_t *per_body, size_t *
     *total = 0;
     for (size_t b = 0; b < c->n_bodies; b++) {
         per_body[b] = seed_body(c, b, g, NULL, 0);
+        if (per_body[b] == 0 && c->bodies[b].shape.type == PM_SHAPE_GMSH_GROUP)
+            return pm_error_set(PM_EINPUT, "%s: bodies[%zu].shape.name: the mesh has no 2-D physical group '%s'",
+                                c->file, b, c->bodies[b].shape.group);
         if (per_body[b] == 0)
             return pm_error_set(PM_EINPUT,
                                 "%s: bodies[%zu] ('%s') yields no particle: no quadrature point of the "
