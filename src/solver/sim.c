@@ -11,8 +11,19 @@
 
 static int build_grid(const pm_case *c, pm_grid *g)
 {
+    if (c->grid.type == PM_GRID_GMSH) {
+        int rc = pm_grid_gmsh_read(g, c->grid.file);
+        if (rc)
+            return pm_error_prefix(rc, "%s: grid.file: ", c->file);
+        if (c->formulation == PM_AXISYMMETRIC && g->lo[0] < -1e-9 * g->h_min)
+            return pm_error_set(PM_EINPUT,
+                                "%s: grid.file: in an axisymmetric run x is the radius, so the mesh must lie in "
+                                "x >= 0; its nodes reach x = %g",
+                                c->file, g->lo[0]);
+        return PM_OK;
+    }
     if (c->grid.type != PM_GRID_RECTANGLE)
-        return pm_error_set(PM_EINPUT, "%s: grid.type: only 'rectangle' grids are available", c->file);
+        return pm_error_set(PM_EINPUT, "%s: grid.type: only 'rectangle' and 'gmsh' grids are available", c->file);
     if (c->formulation == PM_AXISYMMETRIC && c->grid.origin[0] < 0)
         return pm_error_set(PM_EINPUT,
                             "%s: grid.origin: in an axisymmetric run x is the radius, so the grid must lie in "
@@ -141,7 +152,8 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     int rc = build_grid(c, &s->grid);
     if (rc)
         goto fail;
-    rc = pm_approx_create(c->shape_function, &s->grid, &s->approx);
+    pm_approx_opts aopts = {.lme_gamma = c->lme_gamma, .support_radius = c->support_radius};
+    rc = pm_approx_create_opts(c->shape_function, &s->grid, &aopts, &s->approx);
     if (rc) {
         pm_error_prefix(rc, "%s: shape_function: ", c->file);
         goto fail;
