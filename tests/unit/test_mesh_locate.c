@@ -1,0 +1,172 @@
+/* Point location on unstructured grids: agreement with brute force (also in a hole and outside),
+ * the walk from a hint cell, the speed on 1e6 random points, and the linear kind on unstructured
+ * quads (isoparametric inverse map) and triangles. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <time.h>
+
+#include "shape_check.h"
+#include "mesh/mesh_internal.h"
+
+/* A jittered n x n grid on [0, 1]^2 as triangles or quads; cells whose centre lies within
+ * @p hole of (0.5, 0.5) are left out. */
+static void jittered(pm_grid *g, int n, pm_element el, double hole, unsigned seed)
+{
+    const size_t nn = (size_t)(n + 1) * (n + 1);
+    double *x = malloc(2 * nn * sizeof(double));
+    int32_t *conn = malloc((size_t)n * n * 6 * sizeof(int32_t));
+    const double h = 1.0 / n;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            size_t k = (size_t)j * (n + 1) + i;
+            x[2 * k] = i * h + ((i > 0 && i < n) ? (sc_rnd(&seed) - 0.5) * 0.5 * h : 0);
+            x[2 * k + 1] = j * h + ((j > 0 && j < n) ? (sc_rnd(&seed) - 0.5) * 0.5 * h : 0);
+        }
+    size_t nc = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double cx = (i + 0.5) * h - 0.5, cy = (j + 0.5) * h - 0.5;
+            if (cx * cx + cy * cy < hole * hole)
+                continue;
+            int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+            if (el == PM_QUAD4) {
+                int32_t q[4] = {a, b, c, d};
+                memcpy(conn + 4 * nc++, q, sizeof q);
+            } else {
+                int32_t t[6] = {a, b, c, a, c, d};
+                if ((i + j) % 2) {
+                    t[2] = d; t[3] = b; t[4] = c; t[5] = d;
+                }
+                memcpy(conn + 3 * nc, t, sizeof t);
+                nc += 2;
+            }
+        }
+    assert_int_equal(pm_grid_unstructured(g, nn, x, nc, conn, el), 0);
+    free(x);
+    free(conn);
+}
+
+static int32_t brute(const pm_grid *g, const double x[2])
+{
+    for (size_t c = 0; c < g->n_cells; c++)
+        if (pm_grid_cell_contains(g, (int32_t)c, x))
+            return (int32_t)c;
+    return -1;
+}
+
+static void agrees_with_brute_force(void **state)
+{
+    (void)state;
+    for (int el = 0; el < 2; el++) {
+        pm_grid g;
+        jittered(&g, 40, el ? PM_TRI3 : PM_QUAD4, 0.2, 5);
+        unsigned seed = 9;
+        int same = 0, inside = 0;
+        const int npts = 20000;
+        for (int t = 0; t < npts; t++) {
+            /* points also outside the unit square and in the hole */
+            double x[2] = {-0.1 + 1.2 * sc_rnd(&seed), -0.1 + 1.2 * sc_rnd(&seed)};
+            int32_t c = pm_grid_locate(&g, x), b = brute(&g, x);
+            assert_int_equal(c < 0, b < 0);
+            if (c >= 0) {
+                assert_true(pm_grid_cell_contains(&g, c, x));
+                inside++;
+            }
+            same += c == b;
+        }
+        printf("%s: %d of %d points agree with brute force exactly (%d inside)\n", el ? "tri3" : "quad4", same, npts,
+               inside);
+        /* on a shared edge either cell is right; random points essentially never land there */
+        assert_int_equal(same, npts);
+        pm_grid_free(&g);
+    }
+}
+
+static void walk_from_hint(void **state)
+{
+    (void)state;
+    pm_grid g;
+    jittered(&g, 50, PM_TRI3, 0.0, 11);
+    unsigned seed = 3;
+    for (int t = 0; t < 5000; t++) {
+        double x[2] = {0.05 + 0.9 * sc_rnd(&seed), 0.05 + 0.9 * sc_rnd(&seed)};
+        int32_t c = pm_grid_locate(&g, x);
+        double y[2] = {x[0] + 0.03 * (sc_rnd(&seed) - 0.5), x[1] + 0.03 * (sc_rnd(&seed) - 0.5)};
+        int32_t d = pm_grid_locate_from(&g, y, c);
+        assert_int_equal(d, brute(&g, y));
+    }
+    double out[2] = {1.5, 0.5};
+    assert_int_equal(pm_grid_locate_from(&g, out, 0), -1);
+    pm_grid_free(&g);
+}
+
+static void million_points_fast(void **state)
+{
+    (void)state;
+    pm_grid g;
+    jittered(&g, 300, PM_TRI3, 0.0, 17);
+    const size_t n = 1000000;
+    double *x = malloc(2 * n * sizeof(double));
+    unsigned seed = 23;
+    for (size_t i = 0; i < 2 * n; i++)
+        x[i] = sc_rnd(&seed);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    long found = 0;
+    for (size_t i = 0; i < n; i++)
+        found += pm_grid_locate(&g, x + 2 * i) >= 0;
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    printf("located %ld of %zu random points in %zu triangles in %.3f s (%.0f ns per point)\n", found, n, g.n_cells,
+           secs, 1e9 * secs / (double)n);
+    assert_int_equal(found, (long)n);
+    assert_true(secs < 1.0);
+    free(x);
+    pm_grid_free(&g);
+}
+
+static void linear_on_unstructured(void **state)
+{
+    (void)state;
+    for (int el = 0; el < 2; el++) {
+        pm_grid g;
+        jittered(&g, 12, el ? PM_TRI3 : PM_QUAD4, 0.25, 29);
+        pm_approx *a;
+        assert_int_equal(pm_approx_create("linear", &g, &a), 0);
+        pm_particles p;
+        const double lo[2] = {0, 0}, hi[2] = {1, 1};
+        sc_random_particles(&p, 3000, lo, hi, 0, 31);
+        /* drop the points in the hole */
+        size_t k = 0;
+        for (size_t i = 0; i < p.n; i++)
+            if (pm_grid_locate(&g, p.x + 2 * i) >= 0) {
+                p.x[2 * k] = p.x[2 * i];
+                p.x[2 * k + 1] = p.x[2 * i + 1];
+                k++;
+            }
+        p.n = k;
+        assert_int_equal(a->ops->connect(a, &p), 0);
+        sc_errors e = sc_check(a, &p, 0);
+        sc_print(el ? "linear, unstructured tri3" : "linear, unstructured quad4 (isoparametric)", &e);
+        assert_true(e.pu < 1e-10 && e.grad_sum < 1e-10 && e.xrep < 1e-10 && e.urep < 1e-10 && e.grep < 1e-10);
+        assert_true(e.min_n > -1e-10);
+        pm_particles_free(&p);
+        pm_approx_destroy(a);
+        pm_grid_free(&g);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(agrees_with_brute_force),
+        cmocka_unit_test(walk_from_hint),
+        cmocka_unit_test(million_points_fast),
+        cmocka_unit_test(linear_on_unstructured),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
