@@ -345,7 +345,7 @@ static int read_elements(reader *r, msh *m)
 
 static int skip_section(reader *r, const char *name)
 {
-    char end[80], w[80];
+    char end[96], w[80];
     snprintf(end, sizeof end, "$End%s", name + 1);
     for (;;) {
         if (get_word(r, w, sizeof w))
