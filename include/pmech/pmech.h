@@ -7,6 +7,7 @@
 
 #include "pmech/approx.h"
 #include "pmech/case.h"
+#include "pmech/density.h"
 #include "pmech/driver.h"
 #include "pmech/error.h"
 #include "pmech/grid.h"
