@@ -8,7 +8,11 @@
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* Below this many particles a run uses one thread unless --threads or OMP_NUM_THREADS says otherwise. */
+#define PM_PARTICLES_PER_THREAD_MIN 20000
 
 static int check_supported(const pm_case *c)
 {
@@ -63,6 +67,14 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
     pm_sim *s = NULL;
     pm_check(pm_sim_create(c, &s, threads));
+    if (o->threads <= 0 && !getenv("OMP_NUM_THREADS") && s->p.n < PM_PARTICLES_PER_THREAD_MIN) {
+        /* A step of a few thousand particles takes tens of microseconds: the barriers between its
+         * passes would cost more than a second thread gains, and far more when another process holds
+         * a core. Small runs use one thread unless the user asks for more. */
+        threads = 1;
+        s->nd.n_threads = 1;
+        s->approx->n_threads = 1;
+    }
     pm_output *out = NULL;
     int rc = PM_OK, frame = 0;
     const char *dir = o->out_dir ? o->out_dir : c->output.directory;
