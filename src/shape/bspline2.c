@@ -37,8 +37,8 @@ static int weights_1d(double u, int n, int idx[3], double w[3], double dw[3])
     if (i > n)
         i = n;
     const double r = u - i; /* in [-1/2, 1/2] inside the grid */
-    double ww[3] = {0.5 * (0.5 - r) * (0.5 - r), 0.75 - r * r, 0.5 * (0.5 + r) * (0.5 + r)};
-    double dd[3] = {-(0.5 - r), -2 * r, 0.5 + r};
+    const double ww[3] = {0.5 * (0.5 - r) * (0.5 - r), 0.75 - r * r, 0.5 * (0.5 + r) * (0.5 + r)};
+    const double dd[3] = {-(0.5 - r), -2 * r, 0.5 + r};
     const int k0 = i - 1;
     /* real nodes lo..hi (at most 3); ghosts -1 and n+1 fold onto 0, 1 and n, n-1, which lie in it */
     const int base = k0 < 0 ? 0 : k0, hi = i + 1 > n ? n : i + 1;

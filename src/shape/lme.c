@@ -130,12 +130,12 @@ static double log_z(int n, const double (*d)[2], double beta, const double lam[2
     }
     double z = 0;
     for (int i = 0; i < n; i++) {
-        p[i] = exp(p[i] - fmax);
+        p[i] = exp(p[i] - fmax); /* the largest term is 1, so z >= 1 */
         z += p[i];
     }
     for (int i = 0; i < n; i++)
         p[i] /= z;
-    return fmax + log(z);
+    return fmax + log(z > 1 ? z : 1.0);
 }
 
 /* Residual r = sum p d and Hessian J = sum p d d^T - r r^T, formed as sum p (d - r)(d - r)^T: the

@@ -85,7 +85,10 @@ static double dyka(const char *shape, double v0, double *plateau, double *second
         e_prev = e;
         if (n == cap) {
             cap *= 2;
-            tv = realloc(tv, 2 * cap * sizeof(double));
+            double *grown = realloc(tv, 2 * cap * sizeof(double));
+            if (!grown)
+                abort();
+            tv = grown;
         }
         tv[2 * n] = s->t;
         tv[2 * n + 1] = s->p.v[2 * ip];
