@@ -13,7 +13,8 @@ M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
 dt = 0.2 * h / math.sqrt(M / rho)
 mat = {"name": "m", "model": model, "density": rho, "youngs_modulus": E, "poisson_ratio": nu}
 if model == "mohr_coulomb":
-    mat.update({"cohesion": 1.0e4, "friction_angle": 30.0})
+    # weak enough that the block yields under its own weight: the plastic return is exercised
+    mat.update({"cohesion": 1.0e3, "friction_angle": 20.0})
 case = {
     "title": "benchmark block",
     "dimension": 2,

@@ -60,6 +60,8 @@ typedef struct pm_case_bc {
     char boundary[PM_NAME_MAX];   /**< side or physical name; "" when given as a line */
     int line_axis;                /**< -1: named; 0: { "x": value }; 1: { "y": value } */
     double line_value;
+    double line_range[2];         /**< line: the part from..to along the other axis (default all) */
+    double line_normal[2];        /**< line: outward normal for friction (zero: none given) */
     unsigned dirs;                /**< fixed: bit 0 = x, bit 1 = y; velocity: components given */
     double value[2];              /**< velocity values (for the components in dirs) */
     double coefficient;           /**< friction coefficient (>= 0) */

@@ -400,12 +400,28 @@ static int parse_bcs(pm_case *c, json_t *bcs)
         if (!bd)
             return fail(c->file, bp, "required key is missing", NULL);
         if (json_is_object(bd)) {
+            static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};
+            jr_ctx lc = {c->file, bp};
+            pm_check(jr_only_keys(&lc, bd, line_keys));
             json_t *x = json_object_get(bd, "x"), *y = json_object_get(bd, "y");
-            if (json_object_size(bd) != 1 || !(x || y) || !json_is_number(x ? x : y))
+            if (!!x == !!y || !json_is_number(x ? x : y))
                 return pm_error_set(PM_EINPUT, "%s: %s: expected a side name or {\"x\": value} / {\"y\": value}, got %s",
                                     c->file, bp, jr_text(bd));
             bc->line_axis = x ? 0 : 1;
             bc->line_value = json_number_value(x ? x : y);
+            pm_check(jr_number(&lc, bd, "from", 0, -INFINITY, &bc->line_range[0]));
+            pm_check(jr_number(&lc, bd, "to", 0, INFINITY, &bc->line_range[1]));
+            if (!(bc->line_range[0] < bc->line_range[1]))
+                return pm_error_set(PM_EINPUT, "%s: %s: from = %g must be below to = %g", c->file, bp,
+                                    bc->line_range[0], bc->line_range[1]);
+            if (json_object_get(bd, "normal")) {
+                pm_check(jr_vec2(&lc, bd, "normal", 0, NULL, bc->line_normal));
+                const double len = hypot(bc->line_normal[0], bc->line_normal[1]);
+                if (!(len > 0))
+                    return pm_error_set(PM_EINPUT, "%s: %s.normal: must not be zero", c->file, bp);
+                bc->line_normal[0] /= len;
+                bc->line_normal[1] /= len;
+            }
         } else if (json_is_string(bd)) {
             const char *name = json_string_value(bd);
             int known = 0;

@@ -51,6 +51,28 @@ static int add_friction(pm_nodal *nd, const pm_node_set *set, double mu)
     return PM_OK;
 }
 
+/* A line boundary keeps the nodes between its `from` and `to` and takes its given normal. */
+static int restrict_line(const pm_case *c, size_t b, const pm_grid *g, pm_node_set *set)
+{
+    const pm_case_bc *bc = &c->bcs[b];
+    const int other = 1 - bc->line_axis;
+    const double tol = 1e-9 * g->h_min;
+    size_t kept = 0;
+    for (size_t i = 0; i < set->n; i++) {
+        const double q = g->x[2 * set->nodes[i] + other];
+        if (q >= bc->line_range[0] - tol && q <= bc->line_range[1] + tol)
+            set->nodes[kept++] = set->nodes[i];
+    }
+    if (kept == 0)
+        return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no grid node on %c = %g between %g and %g",
+                            c->file, b, bc->line_axis ? 'y' : 'x', bc->line_value, bc->line_range[0],
+                            bc->line_range[1]);
+    set->n = kept;
+    set->normal[0] = bc->line_normal[0];
+    set->normal[1] = bc->line_normal[1];
+    return PM_OK;
+}
+
 static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
 {
     if (c->formulation == PM_AXISYMMETRIC) {
@@ -70,6 +92,7 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
             int k = pm_grid_add_line_set(g, name, bc->line_axis, bc->line_value, NULL);
             if (k < 0)
                 return pm_error_prefix(k, "%s: boundary_conditions[%zu].boundary: ", c->file, b);
+            pm_check(restrict_line(c, b, g, &g->sets[k]));
             set = &g->sets[k];
         } else {
             set = pm_grid_find_set(g, bc->boundary);
@@ -80,8 +103,8 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
         if (bc->type == PM_BC_FRICTION) {
             if (set->normal[0] == 0 && set->normal[1] == 0)
                 return pm_error_set(PM_EINPUT,
-                                    "%s: boundary_conditions[%zu]: friction needs a grid side with an outward "
-                                    "normal (x_min, x_max, y_min, y_max), got a line",
+                                    "%s: boundary_conditions[%zu]: friction needs a grid side (x_min, x_max, "
+                                    "y_min, y_max) or a line with an outward \"normal\"",
                                     c->file, b);
             pm_check(add_friction(nd, set, bc->coefficient));
             continue;

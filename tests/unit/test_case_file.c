@@ -171,6 +171,24 @@ static void plastic_parameters_are_checked(void **st)
            "materials[0].cone_fit", "2");
 }
 
+static void line_boundaries_take_a_range_and_normal(void **st)
+{
+    (void)st;
+    pm_case c;
+    assert_int_equal(load_edit("{ \"type\": \"fixed\", \"boundary\": \"y_min\", \"directions\": [\"y\"] }",
+                               "{ \"type\": \"friction\", \"boundary\": { \"y\": 0.0, \"from\": 0.2, \"normal\": [0, -2] },"
+                               " \"coefficient\": 0.3 }",
+                               &c),
+                     PM_OK);
+    assert_int_equal(c.bcs[1].line_axis, 1);
+    assert_true(c.bcs[1].line_range[0] == 0.2 && isinf(c.bcs[1].line_range[1]));
+    assert_true(c.bcs[1].line_normal[0] == 0.0 && c.bcs[1].line_normal[1] == -1.0);
+    pm_case_free(&c);
+    EXPECT("\"boundary\": \"y_min\"", "\"boundary\": { \"y\": 0, \"form\": 1 }", "boundary_conditions[1].boundary.form",
+           "did you mean 'from'");
+    EXPECT("\"boundary\": \"y_min\"", "\"boundary\": { \"y\": 0, \"from\": 1, \"to\": 0.5 }", "from = 1 must be below");
+}
+
 static void never_crashes_on_truncations(void **st)
 {
     (void)st;
@@ -221,6 +239,7 @@ int main(void)
         cmocka_unit_test(missing_and_mistyped_keys_name_their_path),
         cmocka_unit_test(physical_nonsense_is_refused),
         cmocka_unit_test(plastic_parameters_are_checked),
+        cmocka_unit_test(line_boundaries_take_a_range_and_normal),
         cmocka_unit_test(never_crashes_on_truncations),
         cmocka_unit_test(driver_files_load),
     };
