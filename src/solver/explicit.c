@@ -192,6 +192,19 @@ static inline int update_stress(pm_sim *s, size_t i, const pm_stencil *st, const
     return 0;
 }
 
+/* Interpolate a nodal velocity and acceleration to a particle. */
+static inline void gather(const pm_stencil *st, const double *vel, const double *acc, double v[2], double a[2])
+{
+    v[0] = v[1] = a[0] = a[1] = 0;
+    for (int k = 0; k < st->n; k++) {
+        const int32_t n = st->node[k];
+        v[0] += st->N[k] * vel[2 * n];
+        v[1] += st->N[k] * vel[2 * n + 1];
+        a[0] += st->N[k] * acc[2 * n];
+        a[1] += st->N[k] * acc[2 * n + 1];
+    }
+}
+
 /* Coulomb friction on a grid boundary (Bardenhagen et al. 2000): the approaching normal velocity is
  * removed and the tangential speed reduced by mu times that change, never reversed. */
 static void apply_friction(const pm_friction_node *fn, double v[2])
@@ -413,17 +426,11 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
 #pragma omp for schedule(static)
         for (size_t i = 0; i < p->n; i++) {
             stencil_at(s, i, &st);
-            double ax = 0, ay = 0, vx = 0, vy = 0;
-            for (int k = 0; k < st.n; k++) {
-                const int32_t n = st.node[k];
-                vx += st.N[k] * nd->vel_new[2 * n];
-                vy += st.N[k] * nd->vel_new[2 * n + 1];
-                ax += st.N[k] * nd->acc[2 * n];
-                ay += st.N[k] * nd->acc[2 * n + 1];
-            }
+            double vg[2], ag[2];
+            gather(&st, nd->vel_new, nd->acc, vg, ag);
             if (!musl) {
-                p->v[2 * i] += dt * ax;
-                p->v[2 * i + 1] += dt * ay;
+                p->v[2 * i] += dt * ag[0];
+                p->v[2 * i + 1] += dt * ag[1];
             }
             double w = 0;
             if (update_stress(s, i, &st, vstrain, dt, &w)) {
@@ -431,8 +438,8 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
                 continue;
             }
             wave = w > wave ? w : wave;
-            p->x[2 * i] += dt * vx;
-            p->x[2 * i + 1] += dt * vy;
+            p->x[2 * i] += dt * vg[0];
+            p->x[2 * i + 1] += dt * vg[1];
         }
     }
     s->max_wave = wave;
@@ -503,18 +510,12 @@ static int step_usf(pm_sim *s, double dt)
 #pragma omp for schedule(static)
         for (size_t i = 0; i < p->n; i++) {
             stencil_at(s, i, &st);
-            double ax = 0, ay = 0, vx = 0, vy = 0;
-            for (int k = 0; k < st.n; k++) {
-                const int32_t n = st.node[k];
-                vx += st.N[k] * nd->vel_new[2 * n];
-                vy += st.N[k] * nd->vel_new[2 * n + 1];
-                ax += st.N[k] * nd->acc[2 * n];
-                ay += st.N[k] * nd->acc[2 * n + 1];
-            }
-            p->v[2 * i] += dt * ax;
-            p->v[2 * i + 1] += dt * ay;
-            p->x[2 * i] += dt * vx;
-            p->x[2 * i + 1] += dt * vy;
+            double v[2], a[2];
+            gather(&st, nd->vel_new, nd->acc, v, a);
+            p->v[2 * i] += dt * a[0];
+            p->v[2 * i + 1] += dt * a[1];
+            p->x[2 * i] += dt * v[0];
+            p->x[2 * i + 1] += dt * v[1];
         }
     }
     return PM_OK;
@@ -575,21 +576,15 @@ static int step_newmark_pc(pm_sim *s, double dt)
 #pragma omp for schedule(static)
         for (size_t i = 0; i < p->n; i++) {
             stencil_at(s, i, &st);
-            double ax = 0, ay = 0, vx = 0, vy = 0;
-            for (int k = 0; k < st.n; k++) {
-                const int32_t n = st.node[k];
-                vx += st.N[k] * nd->vel[2 * n];
-                vy += st.N[k] * nd->vel[2 * n + 1];
-                ax += st.N[k] * nd->acc[2 * n];
-                ay += st.N[k] * nd->acc[2 * n + 1];
-            }
+            double vg[2], ag[2];
+            gather(&st, nd->vel, nd->acc, vg, ag);
             double *v = p->v + 2 * i, *a = p->a + 2 * i;
-            v[0] += dt * ((1 - gamma) * a[0] + gamma * ax);
-            v[1] += dt * ((1 - gamma) * a[1] + gamma * ay);
-            a[0] = ax;
-            a[1] = ay;
-            p->x[2 * i] += dt * vx;
-            p->x[2 * i + 1] += dt * vy;
+            v[0] += dt * ((1 - gamma) * a[0] + gamma * ag[0]);
+            v[1] += dt * ((1 - gamma) * a[1] + gamma * ag[1]);
+            a[0] = ag[0];
+            a[1] = ag[1];
+            p->x[2 * i] += dt * vg[0];
+            p->x[2 * i + 1] += dt * vg[1];
         }
     }
     return PM_OK;
