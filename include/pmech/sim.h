@@ -39,6 +39,13 @@ typedef struct pm_nodal {
     pm_friction_node *friction;
     int n_threads;       /**< scatter buffers for OpenMP threads beyond the first */
     double *scratch;     /**< (n_threads - 1) * 5 * n_nodes doubles: mass, mom/force */
+    size_t n_timed;      /**< velocity conditions that end at a given time */
+    struct pm_timed_bc {
+        int set;         /**< grid node set */
+        unsigned dirs;   /**< components */
+        double until;    /**< time after which the nodes are held (velocity zero) */
+        int done;        /**< 1 once switched */
+    } *timed;
 } pm_nodal;
 
 /** Statistics a step reports. */
@@ -77,6 +84,12 @@ int pm_sim_create(const pm_case *c, pm_sim **s, int n_threads);
 
 /** @brief Free a simulation (NULL is fine). */
 void pm_sim_destroy(pm_sim *s);
+
+/**
+ * @brief Switch velocity conditions whose `until` time has come to holding their nodes still.
+ *        Called at the start of every step.
+ */
+void pm_sim_update_constraints(pm_sim *s);
 
 /**
  * @brief Advance one explicit step with the case's scheme (usf, usl, musl, newmark_pc).

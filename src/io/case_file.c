@@ -39,7 +39,7 @@ static const char *const elements[] = {"quad4", "tri3", NULL};
 static const char *const body_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
                                         "initial_stress", "k0", "surface_y", NULL};
 static const char *const shape_types[] = {"rectangle", "polygon", "circle", "gmsh_group", NULL};
-static const char *const bc_keys[] = {"type", "boundary", "directions", "value", "coefficient", NULL};
+static const char *const bc_keys[] = {"type", "boundary", "directions", "value", "coefficient", "until", NULL};
 static const char *const bc_types[] = {"fixed", "velocity", "friction", NULL};
 static const char *const probe_keys[] = {"name", "quantity", "point", "body", NULL};
 static const char *const quantities[] = {"position", "displacement", "velocity", "stress", "plastic_strain", NULL};
@@ -397,6 +397,7 @@ static int parse_bcs(pm_case *c, json_t *bcs)
         json_t *bd = json_object_get(b, "boundary");
         jr_join(bp, sizeof bp, path, "boundary");
         bc->line_axis = -1;
+        bc->until = INFINITY;
         if (!bd)
             return fail(c->file, bp, "required key is missing", NULL);
         if (json_is_object(bd)) {
@@ -464,8 +465,11 @@ static int parse_bcs(pm_case *c, json_t *bcs)
                 bc->dirs |= 1u << which;
             }
         } else if (bc->type == PM_BC_VELOCITY) {
-            static const char *const k[] = {"type", "boundary", "value", NULL};
+            static const char *const k[] = {"type", "boundary", "value", "until", NULL};
             pm_check(jr_only_keys(&cx, b, k));
+            pm_check(jr_number(&cx, b, "until", 0, INFINITY, &bc->until));
+            if (json_object_get(b, "until"))
+                pm_check(jr_range(&cx, "until", bc->until, 0, 1, INFINITY, 0));
             json_t *v = json_object_get(b, "value");
             jr_join(bp, sizeof bp, path, "value");
             if (!v)

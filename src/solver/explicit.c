@@ -615,6 +615,7 @@ int pm_explicit_step(pm_sim *s, double dt)
     int rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
+    pm_sim_update_constraints(s);
     /* particles drift apart in memory as they move; a periodic sort keeps the scatters local */
     if (s->sort_interval > 0 && s->step % s->sort_interval == 0 && s->grid.n_cells < UINT32_MAX)
         pm_sim_sort_particles(s);

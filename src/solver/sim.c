@@ -118,6 +118,17 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
                 nd->vfix[2 * n + d] = bc->type == PM_BC_VELOCITY ? bc->value[d] : 0.0;
             }
         }
+        if (bc->type == PM_BC_VELOCITY && isfinite(bc->until) && bc->until > 0) {
+            struct pm_timed_bc *t = realloc(nd->timed, (nd->n_timed + 1) * sizeof *t);
+            if (!t)
+                return pm_error_set(PM_ENOMEM, "out of memory");
+            nd->timed = t;
+            t[nd->n_timed].set = (int)(set - g->sets);
+            t[nd->n_timed].dirs = bc->dirs;
+            t[nd->n_timed].until = bc->until;
+            t[nd->n_timed].done = 0;
+            nd->n_timed++;
+        }
     }
     return PM_OK;
 }
@@ -153,6 +164,7 @@ static void free_nodal(pm_nodal *nd)
     free(nd->vfix);
     free(nd->friction);
     free(nd->scratch);
+    free(nd->timed);
     memset(nd, 0, sizeof *nd);
 }
 
@@ -308,4 +320,20 @@ void pm_sim_sort_particles(pm_sim *s)
     }
     if (!sorted)
         pm_particles_permute(p, s->perm, s->scratch, s->iscratch);
+}
+
+void pm_sim_update_constraints(pm_sim *s)
+{
+    pm_nodal *nd = &s->nd;
+    for (size_t k = 0; k < nd->n_timed; k++) {
+        struct pm_timed_bc *t = &nd->timed[k];
+        if (t->done || s->t < t->until * (1 - 1e-12))
+            continue;
+        const pm_node_set *set = &s->grid.sets[t->set];
+        for (size_t i = 0; i < set->n; i++)
+            for (int d = 0; d < 2; d++)
+                if (t->dirs & (1u << d))
+                    nd->vfix[2 * set->nodes[i] + d] = 0.0;
+        t->done = 1;
+    }
 }
