@@ -108,6 +108,7 @@ typedef struct pm_case {
         double damping;
         pm_newton_opts newton;
         int load_steps;
+        int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
     } analysis;
     struct {
         pm_grid_type type;

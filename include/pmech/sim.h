@@ -70,6 +70,9 @@ typedef struct pm_sim {
     uint32_t *bucket;    /**< sort workspace: particles per cell, n_cells + 1 */
     double *scratch;     /**< sort workspace: n doubles */
     int32_t *iscratch;   /**< sort workspace: n ints */
+    double *rho_node;    /**< density from positions: nodal densities (NULL when not used) */
+    double *rho_p;       /**< density from positions: particle densities */
+    double *rho_work;    /**< density from positions: n_nodes + n_cells doubles */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
 } pm_sim;
 
@@ -84,6 +87,13 @@ int pm_sim_create(const pm_case *c, pm_sim **s, int n_threads);
 
 /** @brief Free a simulation (NULL is fine). */
 void pm_sim_destroy(pm_sim *s);
+
+/**
+ * @brief Set every particle's volume to mass / density, the density interpolated from nodal densities
+ *        of the particle positions (seed 004 eqs. 12-13); the case's `density_update: positions`.
+ *        Needs located particles (connect).
+ */
+int pm_sim_volumes_from_positions(pm_sim *s);
 
 /**
  * @brief Switch velocity conditions whose `until` time has come to holding their nodes still.

@@ -27,7 +27,9 @@ static const char *const top_keys[] = {"title", "dimension", "formulation", "met
 static const char *const formulations[] = {"plane_strain", "plane_stress", "axisymmetric", NULL};
 static const char *const methods[] = {"mpm", "gmm", "rkpm", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
-                                            "gravity_ramp_time", "damping", "newton", "load_steps", NULL};
+                                            "gravity_ramp_time", "damping", "newton", "load_steps",
+                                            "density_update", NULL};
+static const char *const density_updates[] = {"deformation", "positions", NULL};
 static const char *const analysis_types[] = {"explicit", "implicit", "quasi_static", NULL};
 static const char *const schemes[] = {"musl", "usl", "usf", "newmark_pc", NULL};
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
@@ -78,6 +80,8 @@ static int parse_analysis(pm_case *c, json_t *a)
     pm_check(jr_range(&cx, "gravity_ramp_time", c->analysis.gravity_ramp_time, 0, 0, INFINITY, 0));
     pm_check(jr_number(&cx, a, "damping", 0, 0, &c->analysis.damping));
     pm_check(jr_range(&cx, "damping", c->analysis.damping, 0, 0, 1, 0));
+    pm_check(jr_enum(&cx, a, "density_update", 0, density_updates, 0, &v));
+    c->analysis.density_from_positions = v;
     long n;
     pm_check(jr_int(&cx, a, "load_steps", 0, 10, 1, 100000000, &n));
     c->analysis.load_steps = (int)n;

@@ -616,6 +616,8 @@ int pm_explicit_step(pm_sim *s, double dt)
     if (rc)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     pm_sim_update_constraints(s);
+    if (s->rho_p && (rc = pm_sim_volumes_from_positions(s)) != PM_OK)
+        return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     /* particles drift apart in memory as they move; a periodic sort keeps the scatters local */
     if (s->sort_interval > 0 && s->step % s->sort_interval == 0 && s->grid.n_cells < UINT32_MAX)
         pm_sim_sort_particles(s);

@@ -1,5 +1,6 @@
 /* Setting up a simulation from a case: grid, approximation, particles, nodal arrays, constraints. */
 #include "pmech/sim.h"
+#include "pmech/density.h"
 #include "pmech/error.h"
 
 #include "core/seed.h"
@@ -219,6 +220,15 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         rc = pm_error_set(PM_ENOMEM, "out of memory for the particle sort workspace");
         goto fail;
     }
+    if (c->analysis.density_from_positions) {
+        s->rho_node = malloc(s->grid.n_nodes * sizeof(double));
+        s->rho_p = malloc((s->p.n ? s->p.n : 1) * sizeof(double));
+        s->rho_work = malloc((s->grid.n_nodes + s->grid.n_cells) * sizeof(double));
+        if (!s->rho_node || !s->rho_p || !s->rho_work) {
+            rc = pm_error_set(PM_ENOMEM, "out of memory for the density from positions");
+            goto fail;
+        }
+    }
     rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc) {
         pm_error_prefix(PM_EINPUT, "%s: at t = 0: ", c->file);
@@ -241,6 +251,9 @@ void pm_sim_destroy(pm_sim *s)
     pm_particles_free(&s->p);
     free(s->perm);
     free(s->bucket);
+    free(s->rho_node);
+    free(s->rho_p);
+    free(s->rho_work);
     free(s->scratch);
     free(s->iscratch);
     free_nodal(&s->nd);
@@ -336,4 +349,15 @@ void pm_sim_update_constraints(pm_sim *s)
                     nd->vfix[2 * set->nodes[i] + d] = 0.0;
         t->done = 1;
     }
+}
+
+int pm_sim_volumes_from_positions(pm_sim *s)
+{
+    pm_particles *p = &s->p;
+    pm_check(pm_density_from_positions(&s->grid, p, s->c->formulation == PM_AXISYMMETRIC, -1, s->rho_node, s->rho_p,
+                                       s->rho_work));
+    for (size_t i = 0; i < p->n; i++)
+        if (s->rho_p[i] > 0)
+            p->vol[i] = p->mass[i] / s->rho_p[i];
+    return PM_OK;
 }
