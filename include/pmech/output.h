@@ -31,6 +31,11 @@ typedef struct pm_run_summary {
     int exit_status;                /**< 0, 1 or 2 as the program exits */
     const char *message;            /**< error message ("" on success) */
     int threads;                    /**< OpenMP threads used */
+    int implicit;                   /**< 1: implicit or quasi-static (the fields below are written) */
+    long newton_iterations;         /**< implicit: Newton iterations of all steps */
+    long step_cuts;                 /**< implicit: halvings of steps that did not converge */
+    double assemble_seconds;        /**< implicit: particle updates and assembly */
+    double solve_seconds;           /**< implicit: sparse factorisations and solves */
 } pm_run_summary;
 
 /**

@@ -74,6 +74,7 @@ typedef struct pm_sim {
     double *rho_p;       /**< density from positions: particle densities */
     double *rho_work;    /**< density from positions: n_nodes + n_cells doubles */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
+    struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
 } pm_sim;
 
 /**
@@ -142,6 +143,7 @@ typedef struct pm_run_opts {
     int quiet;             /**< no progress line */
     int threads;           /**< OpenMP threads (0: OMP_NUM_THREADS or all cores) */
     int write_output;      /**< 0: write no files (tests) */
+    int verbose;           /**< implicit runs: Newton iterations also on stderr when no files are written */
 } pm_run_opts;
 
 /**

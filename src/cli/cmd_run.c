@@ -11,7 +11,7 @@
 
 static int bad_usage(const char *what)
 {
-    fprintf(stderr, "pmech run: %s\nusage: pmech run CASE.json [-o DIR] [--quiet] [--threads N]\n", what);
+    fprintf(stderr, "pmech run: %s\nusage: pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n", what);
     return 2;
 }
 
@@ -26,6 +26,8 @@ int pm_cmd_run(int argc, char **argv)
             o.out_dir = argv[i];
         } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
             o.quiet = 1;
+        } else if (!strcmp(argv[i], "--verbose") || !strcmp(argv[i], "-v")) {
+            o.verbose = 1;
         } else if (!strcmp(argv[i], "--threads")) {
             char *end = NULL;
             if (++i >= argc)

@@ -60,6 +60,12 @@ int pm_run_json_write(const char *path, const pm_run_summary *s, const pm_probe_
         bad |= put(root, "frames", json_integer((json_int_t)frames));
         bad |= put(root, "exit_status", json_integer(s->exit_status));
         bad |= put(root, "message", str(s->message));
+        if (s->implicit) {
+            bad |= put(root, "newton_iterations", json_integer(s->newton_iterations));
+            bad |= put(root, "step_cuts", json_integer(s->step_cuts));
+            bad |= put(root, "assemble_seconds", real(s->assemble_seconds));
+            bad |= put(root, "solve_seconds", real(s->solve_seconds));
+        }
     }
     for (size_t k = 0; !bad && k < n_probes; k++) {
         const pm_probe_info *pi = &probes[k];

@@ -1,6 +1,7 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "pmech/sim.h"
 #include "pmech/error.h"
+#include "pmech/implicit.h"
 #include "pmech/output.h"
 #include "pmech/progress.h"
 #include "pmech/render.h"
@@ -17,8 +18,12 @@
 static int check_supported(const pm_case *c)
 {
     if (c->analysis.type != PM_ANALYSIS_EXPLICIT)
-        return pm_error_set(PM_EINPUT, "%s: analysis.type: only 'explicit' analyses are available in this version",
-                            c->file);
+        for (size_t b = 0; b < c->n_bcs; b++)
+            if (c->bcs[b].type == PM_BC_FRICTION)
+                return pm_error_set(PM_EINPUT,
+                                    "%s: boundary_conditions[%zu].type: 'friction' needs analysis.type 'explicit' "
+                                    "(implicit contact is not available in this version); use 'fixed' or 'velocity'",
+                                    c->file, b);
     if (c->method != PM_METHOD_MPM)
         return pm_error_set(PM_EINPUT, "%s: method: only 'mpm' is available in this version", c->file);
     return PM_OK;
@@ -28,6 +33,10 @@ static int check_supported(const pm_case *c)
 static double next_dt(const pm_sim *s)
 {
     const pm_case *c = s->c;
+    if (c->analysis.type == PM_ANALYSIS_QUASI_STATIC)
+        return c->analysis.end_time / c->analysis.load_steps;
+    if (c->analysis.type == PM_ANALYSIS_IMPLICIT && c->analysis.dt <= 0)
+        return pm_sim_stable_dt(s);
     if (c->analysis.dt > 0)
         return c->analysis.dt;
     if (s->step == 0 || !(s->max_wave > 0))
@@ -49,6 +58,80 @@ static int write_frame(pm_output *out, const pm_sim *s, const char *dir, int *fr
     }
     (*frame)++;
     return PM_OK;
+}
+
+/* Implicit runs also write newton.log (every iteration's residual) and reactions.csv (the summed
+ * reaction of each fixed or velocity condition after every step). */
+typedef struct implicit_files {
+    FILE *log, *reactions;
+    pm_implicit_report total;
+} implicit_files;
+
+static int open_implicit_files(implicit_files *f, const pm_case *c, const char *dir, int verbose)
+{
+    memset(f, 0, sizeof *f);
+    if (c->analysis.type == PM_ANALYSIS_EXPLICIT)
+        return PM_OK;
+    char path[PM_PATH_MAX + 32];
+    if (verbose) {
+        f->log = stderr;
+    } else if (dir) {
+        snprintf(path, sizeof path, "%s/newton.log", dir);
+        f->log = fopen(path, "w");
+        if (!f->log)
+            return pm_error_set(PM_EIO, "%s: cannot write", path);
+    }
+    if (dir) {
+        snprintf(path, sizeof path, "%s/reactions.csv", dir);
+        f->reactions = fopen(path, "w");
+        if (!f->reactions)
+            return pm_error_set(PM_EIO, "%s: cannot write", path);
+        fprintf(f->reactions, "time");
+        for (size_t b = 0; b < c->n_bcs; b++) {
+            const pm_case_bc *bc = &c->bcs[b];
+            if (bc->type == PM_BC_FRICTION)
+                continue;
+            char name[PM_NAME_MAX + 16];
+            if (bc->line_axis >= 0)
+                snprintf(name, sizeof name, "%c=%g", bc->line_axis ? 'y' : 'x', bc->line_value);
+            else
+                snprintf(name, sizeof name, "%s", bc->boundary);
+            fprintf(f->reactions, ",%s.Rx,%s.Ry", name, name);
+        }
+        fprintf(f->reactions, "\n");
+        fflush(f->reactions);
+    }
+    return PM_OK;
+}
+
+static void close_implicit_files(implicit_files *f)
+{
+    if (f->log && f->log != stderr)
+        fclose(f->log);
+    if (f->reactions)
+        fclose(f->reactions);
+}
+
+static int implicit_step(pm_sim *s, double dt, implicit_files *f)
+{
+    pm_implicit_report rep;
+    int rc = pm_implicit_step(s, dt, f->log, &rep);
+    f->total.iterations += rep.iterations;
+    f->total.step_cuts += rep.step_cuts;
+    f->total.assemble_seconds += rep.assemble_seconds;
+    f->total.solve_seconds += rep.solve_seconds;
+    if (rc || !f->reactions)
+        return rc;
+    fprintf(f->reactions, "%.10g", s->t);
+    for (size_t b = 0; b < s->c->n_bcs; b++) {
+        if (s->c->bcs[b].type == PM_BC_FRICTION)
+            continue;
+        double R[2];
+        pm_implicit_reaction(s, b, R);
+        fprintf(f->reactions, ",%.10g,%.10g", R[0], R[1]);
+    }
+    fprintf(f->reactions, "\n");
+    return fflush(f->reactions) == 0 ? PM_OK : pm_error_set(PM_EIO, "reactions.csv: write failed");
 }
 
 static int write_energy(pm_output *out, const pm_sim *s)
@@ -97,9 +180,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     const double eps = 1e-12 * end;
     double next_frame = interval, next_energy = interval / 20, loop_seconds = 0;
     double dt_min = INFINITY, dt_max = 0, last_frame_t = 0;
+    implicit_files imf;
+    rc = open_implicit_files(&imf, c, o->write_output ? dir : NULL, o->verbose);
     pm_progress pg;
-    pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet);
-    while (s->t < end - eps) {
+    pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
+    while (!rc && s->t < end - eps) {
         double dt = next_dt(s);
         if (s->t + dt > end)
             dt = end - s->t;
@@ -109,7 +194,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             break;
         }
         const double w0 = pm_wall_seconds();
-        rc = pm_explicit_step(s, dt);
+        rc = c->analysis.type == PM_ANALYSIS_EXPLICIT ? pm_explicit_step(s, dt) : implicit_step(s, dt, &imf);
         loop_seconds += pm_wall_seconds() - w0;
         if (rc)
             break;
@@ -138,6 +223,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             rc = write_energy(out, s);
     }
     pm_progress_end(&pg, s->step, s->t);
+    close_implicit_files(&imf);
     pm_run_summary sum = {
         .version = PMECH_VERSION,
         .case_file = c->file,
@@ -152,6 +238,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .exit_status = pm_exit_code(rc),
         .message = rc ? pm_error_message() : "",
         .threads = threads,
+        .implicit = c->analysis.type != PM_ANALYSIS_EXPLICIT,
+        .newton_iterations = imf.total.iterations,
+        .step_cuts = imf.total.step_cuts,
+        .assemble_seconds = imf.total.assemble_seconds,
+        .solve_seconds = imf.total.solve_seconds,
     };
     if (out) {
         char msg[2048];

@@ -2,6 +2,7 @@
 #include "pmech/sim.h"
 #include "pmech/density.h"
 #include "pmech/error.h"
+#include "pmech/implicit.h"
 
 #include "core/seed.h"
 
@@ -247,6 +248,7 @@ void pm_sim_destroy(pm_sim *s)
 {
     if (!s)
         return;
+    pm_implicit_free(s);
     pm_approx_destroy(s->approx);
     pm_particles_free(&s->p);
     free(s->perm);
@@ -265,7 +267,9 @@ void pm_sim_gravity(const pm_sim *s, double t, double g[2])
 {
     const double *g0 = s->c->analysis.gravity;
     double tr = s->c->analysis.gravity_ramp_time, f = 1.0;
-    if (tr > 0 && t < tr)
+    if (s->c->analysis.type == PM_ANALYSIS_QUASI_STATIC)
+        f = fmin(1.0, t / s->c->analysis.end_time); /* the load grows with the pseudo-time */
+    else if (tr > 0 && t < tr)
         f = 0.5 * (1.0 - cos(M_PI * t / tr));
     g[0] = f * g0[0];
     g[1] = f * g0[1];
