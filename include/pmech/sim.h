@@ -48,6 +48,20 @@ typedef struct pm_nodal {
     } *timed;
 } pm_nodal;
 
+/**
+ * How the parallel particle-to-grid scatters of the explicit steps keep two threads from writing one
+ * node. Chosen when the simulation is created, from the environment variable PMECH_SCATTER
+ * ("colour" or "buffers"; unset: colour).
+ */
+typedef enum pm_scatter {
+    /** Particles sorted by cell are cut into 2 x threads blocks of whole cell rows; the even blocks
+     *  scatter at once straight into the nodal arrays, then the odd ones. Linear quad4 on a
+     *  structured grid only; other approximations use buffers. */
+    PM_SCATTER_COLOUR = 0,
+    /** Every thread scatters into its own copy of the nodal arrays; the copies are summed after. */
+    PM_SCATTER_BUFFERS = 1
+} pm_scatter;
+
 /** Statistics a step reports. */
 typedef struct pm_step_info {
     double dt;           /**< step taken */
@@ -75,6 +89,10 @@ typedef struct pm_sim {
     double *rho_work;    /**< density from positions: n_nodes + n_cells doubles */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
     struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
+    pm_scatter scatter;  /**< scatter strategy of the explicit steps (set at creation only) */
+    size_t *blocks;      /**< colour scatter: first particle of each of the 2 x threads row blocks, then n */
+    int n_blocks;        /**< colour scatter: blocks in use (0: not cut yet) */
+    int blocks_ok;       /**< colour scatter: no two same-colour blocks share a node at this step */
 } pm_sim;
 
 /**

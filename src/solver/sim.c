@@ -135,7 +135,15 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
     return PM_OK;
 }
 
-static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads)
+/* PMECH_SCATTER picks the strategy so that both can be measured and compared on the same build. */
+static pm_scatter scatter_strategy(void)
+{
+    const char *e = getenv("PMECH_SCATTER");
+    return e && strcmp(e, "buffers") == 0 ? PM_SCATTER_BUFFERS : PM_SCATTER_COLOUR;
+}
+
+/* Per-thread copies of the nodal arrays only where a scatter may need them: colouring needs none. */
+static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads, int need_buffers)
 {
     nd->mass = calloc(nn, sizeof(double));
     nd->mom = calloc(2 * nn, sizeof(double));
@@ -146,10 +154,10 @@ static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads)
     nd->fixed = calloc(nn, 1);
     nd->vfix = calloc(2 * nn, sizeof(double));
     nd->n_threads = n_threads < 1 ? 1 : n_threads;
-    if (nd->n_threads > 1)
+    if (nd->n_threads > 1 && need_buffers)
         nd->scratch = calloc((size_t)(nd->n_threads - 1) * 5 * nn, sizeof(double));
     if (!nd->mass || !nd->mom || !nd->vel || !nd->vel_new || !nd->force || !nd->acc || !nd->fixed ||
-        !nd->vfix || (nd->n_threads > 1 && !nd->scratch))
+        !nd->vfix || (nd->n_threads > 1 && need_buffers && !nd->scratch))
         return pm_error_set(PM_ENOMEM, "cannot allocate nodal arrays for %zu nodes", nn);
     return PM_OK;
 }
@@ -198,6 +206,10 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
     s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
                                   s->grid.element == PM_QUAD4;
+    s->scatter = scatter_strategy();
+    if (!s->approx->fast_linear_quad)
+        s->scatter = PM_SCATTER_BUFFERS; /* the row blocks need a structured grid's rows and 2 x 2 stencils */
+    s->blocks = malloc((2 * (size_t)(n_threads < 1 ? 1 : n_threads) + 1) * sizeof(size_t));
     size_t *per_body = calloc(c->n_bodies ? c->n_bodies : 1, sizeof(size_t)), total = 0;
     if (!per_body) {
         rc = pm_error_set(PM_ENOMEM, "out of memory");
@@ -209,7 +221,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         goto fail;
     if ((rc = pm_particles_alloc(&s->p, total, max_state(c))) != 0 ||
         (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 ||
-        (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads)) != 0 ||
+        (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads, s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
         (rc = apply_bcs(c, &s->grid, &s->nd)) != 0)
         goto fail;
     s->sort_interval = 50;
@@ -217,7 +229,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     s->bucket = malloc((s->grid.n_cells + 1) * sizeof(uint32_t));
     s->scratch = malloc((s->p.n ? s->p.n : 1) * sizeof(double));
     s->iscratch = malloc((s->p.n ? s->p.n : 1) * sizeof(int32_t));
-    if (!s->perm || !s->bucket || !s->scratch || !s->iscratch) {
+    if (!s->perm || !s->bucket || !s->scratch || !s->iscratch || !s->blocks) {
         rc = pm_error_set(PM_ENOMEM, "out of memory for the particle sort workspace");
         goto fail;
     }
@@ -253,6 +265,7 @@ void pm_sim_destroy(pm_sim *s)
     pm_particles_free(&s->p);
     free(s->perm);
     free(s->bucket);
+    free(s->blocks);
     free(s->rho_node);
     free(s->rho_p);
     free(s->rho_work);
