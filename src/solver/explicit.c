@@ -475,17 +475,20 @@ static void grid_update(pm_sim *s, double dt, int constrain_start)
         if (constrain_start)
             constrain(nd, (int32_t)n, v);
         constrain(nd, (int32_t)n, vn);
+        /* here rather than in a loop of its own: the velocities are still in registers */
+        a[0] = (vn[0] - v[0]) / dt;
+        a[1] = (vn[1] - v[1]) / dt;
     }
     for (size_t k = 0; k < nd->n_friction; k++) {
         const pm_friction_node *fn = &nd->friction[k];
-        if (nd->mass[fn->node] > mfloor) {
-            apply_friction(fn, nd->vel_new + 2 * fn->node);
-            constrain(nd, fn->node, nd->vel_new + 2 * fn->node);
+        const int32_t n = fn->node;
+        if (nd->mass[n] > mfloor) {
+            apply_friction(fn, nd->vel_new + 2 * n);
+            constrain(nd, n, nd->vel_new + 2 * n);
+            for (int d = 0; d < 2; d++)
+                nd->acc[2 * n + d] = (nd->vel_new[2 * n + d] - nd->vel[2 * n + d]) / dt;
         }
     }
-#pragma omp parallel for schedule(static) num_threads(nd->n_threads)
-    for (size_t n = 0; n < 2 * nn; n++)
-        nd->acc[n] = (nd->vel_new[n] - nd->vel[n]) / dt;
 }
 
 /* Velocities re-projected from particle momentum (MUSL) or P2G momentum (USF start) with constraints. */
@@ -718,7 +721,7 @@ static void usl_finish_lq(pm_sim *s, size_t lo, size_t hi, double dt, int musl, 
                 for (int d = 0; d < 2; d++) {
                     sv[k][d] = vs[2 * node[k] + d];
                     ev[k][d] = nvn[2 * node[k] + d];
-                    ea[k][d] = nacc[2 * node[k] + d];
+                    ea[k][d] = musl ? 0.0 : nacc[2 * node[k] + d];
                 }
         }
         double N[4], dN[4][2];
