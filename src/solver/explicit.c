@@ -613,7 +613,10 @@ static void p2g_range_lq(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b, 
             const double V = vol[i], sxx = sg[PM_SXX], syy = sg[PM_SYY], sxy = sg[PM_SXY];
             const double hoop = axi ? sg[PM_SZZ] / x[2 * i] : 0.0;
             for (int k = 0; k < 4; k++) {
-                a.fx[k] += -V * (sxx * dN[k][0] + sxy * dN[k][1] + hoop * N[k]) + N[k] * m * g0;
+                double tx = sxx * dN[k][0] + sxy * dN[k][1];
+                if (axi)
+                    tx += hoop * N[k];
+                a.fx[k] += -V * tx + N[k] * m * g0;
                 a.fy[k] += -V * (sxy * dN[k][0] + syy * dN[k][1]) + N[k] * m * g1;
             }
         }
@@ -710,6 +713,7 @@ static void usl_finish_lq(pm_sim *s, size_t lo, size_t hi, double dt, int musl, 
     const lq_grid q = lq_of(&s->grid);
     const double *restrict nvn = s->nd.vel_new, *restrict nacc = s->nd.acc;
     const int32_t *restrict cell = p->cell;
+    const int axi = s->c->formulation == PM_AXISYMMETRIC;
     double sv[4][2] = {{0}}, ev[4][2] = {{0}}, ea[4][2] = {{0}};
     int32_t cur = -1, cx = 0, cy = 0;
     for (size_t i = lo; i < hi; i++) {
@@ -746,8 +750,10 @@ static void usl_finish_lq(pm_sim *s, size_t lo, size_t hi, double dt, int musl, 
             L[1] += sv[k][0] * dN[k][1];
             L[2] += sv[k][1] * dN[k][0];
             L[3] += sv[k][1] * dN[k][1];
-            vr += sv[k][0] * N[k];
         }
+        if (axi) /* the hoop rate v_r / r needs the radial velocity */
+            for (int k = 0; k < 4; k++)
+                vr += sv[k][0] * N[k];
         double w = 0;
         if (update_stress_L(s, i, L, vr, dt, &w)) {
             o->bad = (long)i < o->bad ? (long)i : o->bad;
