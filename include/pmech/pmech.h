@@ -7,11 +7,13 @@
 
 #include "pmech/approx.h"
 #include "pmech/case.h"
+#include "pmech/cloud.h"
 #include "pmech/density.h"
 #include "pmech/driver.h"
 #include "pmech/error.h"
 #include "pmech/grid.h"
 #include "pmech/material.h"
+#include "pmech/meshfree.h"
 #include "pmech/output.h"
 #include "pmech/particles.h"
 #include "pmech/progress.h"
