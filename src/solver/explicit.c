@@ -4,8 +4,10 @@
  *
  * Every particle pass evaluates shape functions at the positions of the start of the step (the
  * grid is the undeformed one during the step), so positions are moved in the last pass.
- * Scatters run in parallel into per-thread nodal buffers that are summed afterwards, so no two
- * threads write the same memory and the result depends on the thread count only by round-off.
+ * Parallel scatters never let two threads add into one node: either the particles, sorted by cell,
+ * are cut into row blocks of two colours that scatter colour by colour straight into the nodal
+ * arrays, or every thread scatters into its own copy of them, summed afterwards (pm_scatter). Either
+ * way the result depends on the thread count only by round-off.
  */
 #include "pmech/sim.h"
 #include "pmech/error.h"
@@ -240,7 +242,7 @@ static void cut_blocks(pm_sim *s)
  */
 static int blocks_disjoint(const pm_sim *s)
 {
-    enum { MAXB = 256 };
+    enum { MAXB = 256 }; /* row ranges on the stack; beyond 128 threads one thread scatters */
     const int nb = s->n_blocks;
     if (nb <= 2 || nb > MAXB)
         return nb == 2 ? 1 : 0;
