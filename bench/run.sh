@@ -7,6 +7,7 @@
 #   - a seed-004 silo-discharge-sized workload (31,212 points, 77,000 steps, viscoplastic
 #     Drucker-Prager, axisymmetric), 2 threads, timed end to end (skip with QUICK=1).
 # Prints a Markdown table; with --write it also rewrites the table in docs/performance.md.
+# PMECH_SCATTER=buffers in the environment measures the per-thread-buffer scatter instead of colours.
 # usage: bench/run.sh [path/to/pmech] [--write]
 set -e
 PMECH=${1:-build/pmech}
@@ -56,7 +57,8 @@ if [ "$WRITE" = "--write" ]; then
     sed -n '1,/<!-- BENCH START -->/p' "$doc"
     echo
     echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')),"
-    echo "$(cc --version | head -1), CMake Release build (-O3 -fopenmp), pmech $("$PMECH" --version | cut -d' ' -f2)."
+    echo "$(cc --version | head -1), CMake Release build (-O3 -fopenmp), pmech $("$PMECH" --version | cut -d' ' -f2),"
+    echo "parallel scatter: ${PMECH_SCATTER:-colour} (PMECH_SCATTER)."
     echo
     cat "$table"
     echo
