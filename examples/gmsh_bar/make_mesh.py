@@ -2,7 +2,12 @@
 """Write bar.msh (MSH 4.1 ASCII) with the entities and physical groups of bar.geo, without Gmsh:
 a grid of h = 0.01 with interior nodes jittered by up to 0.25 h (nodes on lines move only along
 them), each quad cut into two triangles along alternating diagonals."""
+import os
 import random
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from msh41 import write_msh41  # noqa: E402
 
 random.seed(4)
 h, H, x0, xi, x1 = 0.01, 0.04, -0.1, 0.0, 1.0
@@ -39,40 +44,8 @@ lines = {
     7: [(tag(i_int, j), tag(i_int, j + 1)) for j in range(ny)],
 }
 pts = {1: (x0, 0), 2: (xi, 0), 3: (x1, 0), 4: (x1, H), 5: (xi, H), 6: (x0, H)}
-curve_pts = {1: (1, 2), 2: (2, 3), 3: (3, 4), 4: (4, 5), 5: (5, 6), 6: (6, 1), 7: (2, 5)}
-curve_phys = {1: [1], 2: [1], 3: [3], 4: [2], 5: [2], 6: [], 7: [4]}
-surf = {1: ([1, 7, 5, 6], [5]), 2: ([2, 3, 4, -7], [6])}
-out = ["$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$PhysicalNames", "6",
-       '1 1 "bottom"', '1 2 "top"', '1 3 "fixed_end"', '1 4 "free_end"', '2 5 "air"', '2 6 "bar"',
-       "$EndPhysicalNames", "$Entities", "6 7 2 0"]
-for p, (x, y) in pts.items():
-    out.append(f"{p} {x:.17g} {y:.17g} 0 0")
-for c, (a, b) in curve_pts.items():
-    (xa, ya), (xb, yb) = pts[a], pts[b]
-    ph = curve_phys[c]
-    out.append(f"{c} {min(xa, xb):.17g} {min(ya, yb):.17g} 0 {max(xa, xb):.17g} {max(ya, yb):.17g} 0 "
-               f"{len(ph)}{''.join(' %d' % t for t in ph)} 2 {a} -{b}")
-for s, (cl, ph) in surf.items():
-    xs = [x0, xi] if s == 1 else [xi, x1]
-    out.append(f"{s} {xs[0]:.17g} 0 0 {xs[1]:.17g} {H:.17g} 0 {len(ph)}{''.join(' %d' % t for t in ph)} "
-               f"{len(cl)}{''.join(' %d' % t for t in cl)}")
-out += ["$EndEntities", "$Nodes", f"1 {len(nodes)} 1 {len(nodes)}", f"2 1 0 {len(nodes)}"]
-order = sorted(nodes.values())
-out += [str(t) for t, _, _ in order]
-out += [f"{x:.17g} {y:.17g} 0" for _, x, y in order]
-out += ["$EndNodes", "$Elements"]
-nel = sum(len(v) for v in lines.values()) + sum(len(v) for v in tris.values())
-out.append(f"{len(lines) + len(tris)} {nel} 1 {nel}")
-e = 1
-for c, segs in lines.items():
-    out.append(f"1 {c} 1 {len(segs)}")
-    for a, b in segs:
-        out.append(f"{e} {a} {b}")
-        e += 1
-for s, ts in tris.items():
-    out.append(f"2 {s} 2 {len(ts)}")
-    for a, b, c in ts:
-        out.append(f"{e} {a} {b} {c}")
-        e += 1
-out.append("$EndElements")
-open("bar.msh", "w").write("\n".join(out) + "\n")
+curves = {1: (1, 2, [1]), 2: (2, 3, [1]), 3: (3, 4, [3]), 4: (4, 5, [2]), 5: (5, 6, [2]), 6: (6, 1, []),
+          7: (2, 5, [4])}
+surfaces = {1: ((x0, 0, xi, H), [5], [1, 7, 5, 6]), 2: ((xi, 0, x1, H), [6], [2, 3, 4, -7])}
+names = [(1, 1, "bottom"), (1, 2, "top"), (1, 3, "fixed_end"), (1, 4, "free_end"), (2, 5, "air"), (2, 6, "bar")]
+write_msh41("bar.msh", names, pts, curves, surfaces, nodes, lines, tris)

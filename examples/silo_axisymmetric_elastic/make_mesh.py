@@ -5,8 +5,12 @@ triangles along alternating diagonals. `make_mesh.py JITTER` moves interior node
 (nodes on the boundary lines and on the fill surface z = 3 only along them); the shipped mesh has
 none (see the README for what a jittered mesh shows). Physical groups: 2-D
 "fill" (z < 3) and "headspace", 1-D "floor" (z = 0), "wall" (r = 1), "axis" (r = 0)."""
+import os
 import random
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from msh41 import write_msh41  # noqa: E402
 
 random.seed(7)
 jit = float(sys.argv[1]) if len(sys.argv) > 1 else 0.0
@@ -41,39 +45,8 @@ lines = {
     7: [(tag(0, j + 1), tag(0, j)) for j in range(ny - 1, jf - 1, -1)],        # axis, headspace
 }
 pts = {1: (0, 0), 2: (R, 0), 3: (R, HF), 4: (0, HF), 5: (R, HT), 6: (0, HT)}
-curve_pts = {1: (1, 2), 2: (2, 3), 3: (3, 4), 4: (4, 1), 5: (3, 5), 6: (5, 6), 7: (6, 4)}
-curve_phys = {1: [1], 2: [2], 3: [], 4: [3], 5: [2], 6: [], 7: [3]}
-surf = {1: ([1, 2, 3, 4], [4], (0, HF)), 2: ([-3, 5, 6, 7], [5], (HF, HT))}
-out = ["$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$PhysicalNames", "5",
-       '1 1 "floor"', '1 2 "wall"', '1 3 "axis"', '2 4 "fill"', '2 5 "headspace"',
-       "$EndPhysicalNames", "$Entities", "6 7 2 0"]
-for p, (x, y) in pts.items():
-    out.append(f"{p} {x:.17g} {y:.17g} 0 0")
-for c, (a, b) in curve_pts.items():
-    (xa, ya), (xb, yb) = pts[a], pts[b]
-    ph = curve_phys[c]
-    out.append(f"{c} {min(xa, xb):.17g} {min(ya, yb):.17g} 0 {max(xa, xb):.17g} {max(ya, yb):.17g} 0 "
-               f"{len(ph)}{''.join(' %d' % t for t in ph)} 2 {a} -{b}")
-for s, (cl, ph, (ya, yb)) in surf.items():
-    out.append(f"{s} 0 {ya:.17g} 0 {R:.17g} {yb:.17g} 0 {len(ph)}{''.join(' %d' % t for t in ph)} "
-               f"{len(cl)}{''.join(' %d' % t for t in cl)}")
-out += ["$EndEntities", "$Nodes", f"1 {len(nodes)} 1 {len(nodes)}", f"2 1 0 {len(nodes)}"]
-order = sorted(nodes.values())
-out += [str(t) for t, _, _ in order]
-out += [f"{x:.17g} {y:.17g} 0" for _, x, y in order]
-out += ["$EndNodes", "$Elements"]
-nel = sum(len(v) for v in lines.values()) + sum(len(v) for v in tris.values())
-out.append(f"{len(lines) + len(tris)} {nel} 1 {nel}")
-e = 1
-for c, segs in lines.items():
-    out.append(f"1 {c} 1 {len(segs)}")
-    for a, b in segs:
-        out.append(f"{e} {a} {b}")
-        e += 1
-for s, ts in tris.items():
-    out.append(f"2 {s} 2 {len(ts)}")
-    for a, b, c in ts:
-        out.append(f"{e} {a} {b} {c}")
-        e += 1
-out.append("$EndElements")
-open("silo.msh", "w").write("\n".join(out) + "\n")
+curves = {1: (1, 2, [1]), 2: (2, 3, [2]), 3: (3, 4, []), 4: (4, 1, [3]), 5: (3, 5, [2]), 6: (5, 6, []),
+          7: (6, 4, [3])}
+surfaces = {1: ((0, 0, R, HF), [4], [1, 2, 3, 4]), 2: ((0, HF, R, HT), [5], [-3, 5, 6, 7])}
+names = [(1, 1, "floor"), (1, 2, "wall"), (1, 3, "axis"), (2, 4, "fill"), (2, 5, "headspace")]
+write_msh41("silo.msh", names, pts, curves, surfaces, nodes, lines, tris)
