@@ -74,21 +74,7 @@ static int bspline2_eval(const pm_approx *a, const pm_particles *p, size_t ip, p
     const double ihx = 1.0 / g->h[0], ihy = 1.0 / g->h[1];
     int nx = weights_1d((p->x[2 * ip] - g->origin[0]) * ihx, g->cells[0], ix, wx, dwx);
     int ny = weights_1d((p->x[2 * ip + 1] - g->origin[1]) * ihy, g->cells[1], iy, wy, dwy);
-    const int stride = g->cells[0] + 1;
-    int n = 0;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++) {
-            double N = wx[i] * wy[j];
-            double gx = dwx[i] * ihx * wy[j], gy = wx[i] * dwy[j] * ihy;
-            if (N == 0 && gx == 0 && gy == 0)
-                continue;
-            s->node[n] = iy[j] * stride + ix[i];
-            s->N[n] = N;
-            s->dN[n][0] = gx;
-            s->dN[n][1] = gy;
-            n++;
-        }
-    s->n = n;
+    pm_shape_tensor_stencil(g, nx, ix, wx, dwx, ny, iy, wy, dwy, s);
     return PM_OK;
 }
 

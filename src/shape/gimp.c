@@ -118,21 +118,7 @@ static int gimp_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_st
     if (nx < 0 || ny < 0)
         return pm_error_set(PM_ESIM, "particle %zu: its GIMP domain (half-size %g x %g) spans more than %d nodes",
                             ip, p->hsize[2 * ip], p->hsize[2 * ip + 1], GIMP_1D_MAX);
-    const int stride = g->cells[0] + 1;
-    int n = 0;
-    for (int j = 0; j < ny; j++)
-        for (int i = 0; i < nx; i++) {
-            double N = wx[i] * wy[j];
-            double gx = dwx[i] * ihx * wy[j], gy = wx[i] * dwy[j] * ihy;
-            if (N == 0 && gx == 0 && gy == 0)
-                continue;
-            s->node[n] = iy[j] * stride + ix[i];
-            s->N[n] = N;
-            s->dN[n][0] = gx;
-            s->dN[n][1] = gy;
-            n++;
-        }
-    s->n = n;
+    pm_shape_tensor_stencil(g, nx, ix, wx, dwx, ny, iy, wy, dwy, s);
     return PM_OK;
 }
 

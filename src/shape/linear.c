@@ -78,3 +78,24 @@ const pm_approx_ops pm_approx_linear_ops = {
     .eval = linear_eval,
     .destroy = NULL,
 };
+
+void pm_shape_tensor_stencil(const pm_grid *g, int nx, const int *ix, const double *wx, const double *dwx,
+                             int ny, const int *iy, const double *wy, const double *dwy, pm_stencil *s)
+{
+    const double ihx = 1.0 / g->h[0], ihy = 1.0 / g->h[1];
+    const int stride = g->cells[0] + 1;
+    int n = 0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            const double N = wx[i] * wy[j];
+            const double gx = dwx[i] * ihx * wy[j], gy = wx[i] * dwy[j] * ihy;
+            if (N == 0 && gx == 0 && gy == 0)
+                continue;
+            s->node[n] = iy[j] * stride + ix[i];
+            s->N[n] = N;
+            s->dN[n][0] = gx;
+            s->dN[n][1] = gy;
+            n++;
+        }
+    s->n = n;
+}

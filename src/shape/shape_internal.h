@@ -12,6 +12,14 @@
 int pm_shape_connect_cells(pm_approx *a, pm_particles *p);
 
 /**
+ * Tensor-product stencil on a structured grid from 1-D weights: node (ix[i], iy[j]) gets
+ * N = wx[i] wy[j] and gradient (dwx[i] wy[j] / hx, wx[i] dwy[j] / hy), where dw are derivatives with
+ * respect to the coordinate in cell units. Nodes whose value and gradient all vanish are left out.
+ */
+void pm_shape_tensor_stencil(const pm_grid *g, int nx, const int *ix, const double *wx, const double *dwx,
+                             int ny, const int *iy, const double *wy, const double *dwy, pm_stencil *s);
+
+/**
  * Linear (isoparametric bilinear) shape functions of an arbitrary convex quad4 cell at xp: the
  * inverse map (xi, eta) is found by Newton's method from the cell centre.
  * @return 0, or -1 when the Newton iteration does not converge (degenerate cell)
