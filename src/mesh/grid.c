@@ -31,24 +31,16 @@ int pm_grid_add_line_set(pm_grid *g, const char *name, int axis, double value, c
             cnt++;
     if (cnt == 0)
         return pm_error_set(PM_EINPUT, "no grid node lies on the line %c = %g", axis ? 'y' : 'x', value);
-    pm_node_set *sets = realloc(g->sets, (g->n_sets + 1) * sizeof *sets);
-    if (!sets)
+    int32_t *nodes = malloc(cnt * sizeof *nodes);
+    if (!nodes)
         return pm_error_set(PM_ENOMEM, "out of memory for node set '%s'", name);
-    g->sets = sets;
-    pm_node_set *s = &g->sets[g->n_sets];
-    memset(s, 0, sizeof *s);
-    snprintf(s->name, sizeof s->name, "%s", name);
-    s->nodes = malloc(cnt * sizeof(int32_t));
-    if (!s->nodes)
-        return pm_error_set(PM_ENOMEM, "out of memory for node set '%s'", name);
+    size_t k = 0;
     for (size_t i = 0; i < g->n_nodes; i++)
         if (fabs(g->x[2 * i + axis] - value) <= tol)
-            s->nodes[s->n++] = (int32_t)i;
-    if (normal) {
-        s->normal[0] = normal[0];
-        s->normal[1] = normal[1];
-    }
-    return (int)g->n_sets++;
+            nodes[k++] = (int32_t)i;
+    const int rc = pm_grid_add_node_set(g, name, k, nodes, normal);
+    free(nodes);
+    return rc;
 }
 
 const pm_node_set *pm_grid_find_set(const pm_grid *g, const char *name)
