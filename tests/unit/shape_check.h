@@ -106,4 +106,50 @@ static inline void sc_random_particles(pm_particles *p, size_t n, const double l
     }
 }
 
+
+/* A jittered n x n grid on [0, 1]^2 as triangles (diagonals alternating) or quads: interior nodes move
+ * by up to amp/2 of the spacing in each direction; cells whose centre lies within @p hole of
+ * (0.5, 0.5) are left out. Returns pm_grid_unstructured's status. */
+static inline int sc_jittered_grid(pm_grid *g, int n, pm_element el, double amp, double hole, unsigned seed)
+{
+    const size_t nn = (size_t)(n + 1) * (n + 1);
+    double *x = malloc(2 * nn * sizeof(double));
+    int32_t *conn = malloc((size_t)n * n * 6 * sizeof(int32_t));
+    if (!x || !conn) {
+        free(x);
+        free(conn);
+        return -1;
+    }
+    const double h = 1.0 / n;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            size_t k = (size_t)j * (n + 1) + i;
+            x[2 * k] = i * h + ((i > 0 && i < n) ? (sc_rnd(&seed) - 0.5) * amp * h : 0);
+            x[2 * k + 1] = j * h + ((j > 0 && j < n) ? (sc_rnd(&seed) - 0.5) * amp * h : 0);
+        }
+    size_t nc = 0;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            double cx = (i + 0.5) * h - 0.5, cy = (j + 0.5) * h - 0.5;
+            if (cx * cx + cy * cy < hole * hole)
+                continue;
+            int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+            if (el == PM_QUAD4) {
+                int32_t q[4] = {a, b, c, d};
+                memcpy(conn + 4 * nc++, q, sizeof q);
+            } else {
+                int32_t t[6] = {a, b, c, a, c, d};
+                if ((i + j) % 2) {
+                    t[2] = d; t[3] = b; t[4] = c; t[5] = d;
+                }
+                memcpy(conn + 3 * nc, t, sizeof t);
+                nc += 2;
+            }
+        }
+    int rc = pm_grid_unstructured(g, nn, x, nc, conn, el);
+    free(x);
+    free(conn);
+    return rc;
+}
+
 #endif

@@ -13,31 +13,6 @@
 
 static const double RHO = 1850.0;
 
-static void jittered_tri(pm_grid *g, int n, unsigned seed)
-{
-    const size_t nn = (size_t)(n + 1) * (n + 1);
-    double *x = malloc(2 * nn * sizeof(double));
-    int32_t *conn = malloc((size_t)n * n * 6 * sizeof(int32_t));
-    const double h = 1.0 / n;
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++) {
-            size_t k = (size_t)j * (n + 1) + i;
-            x[2 * k] = i * h + ((i > 0 && i < n) ? (sc_rnd(&seed) - 0.5) * 0.4 * h : 0);
-            x[2 * k + 1] = j * h + ((j > 0 && j < n) ? (sc_rnd(&seed) - 0.5) * 0.4 * h : 0);
-        }
-    size_t nc = 0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-            int32_t t[6] = {a, b, c, a, c, d};
-            memcpy(conn + 3 * nc, t, sizeof t);
-            nc += 2;
-        }
-    assert_int_equal(pm_grid_unstructured(g, nn, x, nc, conn, PM_TRI3), 0);
-    free(x);
-    free(conn);
-}
-
 /* 3 points per triangle at the order-2 Gauss points, mass = rho * volume. */
 static void gauss_fill(const pm_grid *g, pm_particles *p, int axi, double rho)
 {
@@ -62,7 +37,7 @@ static void gauss_seeding_is_exact(void **state)
 {
     (void)state;
     pm_grid g;
-    jittered_tri(&g, 20, 3);
+    assert_int_equal(sc_jittered_grid(&g, 20, PM_TRI3, 0.4, 0.0, 3), 0);
     for (int axi = 0; axi < 2; axi++) {
         pm_particles p;
         gauss_fill(&g, &p, axi, RHO);
@@ -132,7 +107,7 @@ static void uniform_region_within_one_percent(void **state)
 {
     (void)state;
     pm_grid g;
-    jittered_tri(&g, 20, 7);
+    assert_int_equal(sc_jittered_grid(&g, 20, PM_TRI3, 0.4, 0.0, 7), 0);
     lattice_in_a_disk(&g, "lattice disk, jittered triangles", 0, 1.0);
     lattice_in_a_disk(&g, "lattice disk, axisymmetric", 1, 1.0);
     lattice_in_a_disk(&g, "lattice disk squeezed to 0.8 in y", 0, 0.8);

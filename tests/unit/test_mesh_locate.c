@@ -12,44 +12,6 @@
 #include "shape_check.h"
 #include "mesh/mesh_internal.h"
 
-/* A jittered n x n grid on [0, 1]^2 as triangles or quads; cells whose centre lies within
- * @p hole of (0.5, 0.5) are left out. */
-static void jittered(pm_grid *g, int n, pm_element el, double hole, unsigned seed)
-{
-    const size_t nn = (size_t)(n + 1) * (n + 1);
-    double *x = malloc(2 * nn * sizeof(double));
-    int32_t *conn = malloc((size_t)n * n * 6 * sizeof(int32_t));
-    const double h = 1.0 / n;
-    for (int j = 0; j <= n; j++)
-        for (int i = 0; i <= n; i++) {
-            size_t k = (size_t)j * (n + 1) + i;
-            x[2 * k] = i * h + ((i > 0 && i < n) ? (sc_rnd(&seed) - 0.5) * 0.5 * h : 0);
-            x[2 * k + 1] = j * h + ((j > 0 && j < n) ? (sc_rnd(&seed) - 0.5) * 0.5 * h : 0);
-        }
-    size_t nc = 0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            double cx = (i + 0.5) * h - 0.5, cy = (j + 0.5) * h - 0.5;
-            if (cx * cx + cy * cy < hole * hole)
-                continue;
-            int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
-            if (el == PM_QUAD4) {
-                int32_t q[4] = {a, b, c, d};
-                memcpy(conn + 4 * nc++, q, sizeof q);
-            } else {
-                int32_t t[6] = {a, b, c, a, c, d};
-                if ((i + j) % 2) {
-                    t[2] = d; t[3] = b; t[4] = c; t[5] = d;
-                }
-                memcpy(conn + 3 * nc, t, sizeof t);
-                nc += 2;
-            }
-        }
-    assert_int_equal(pm_grid_unstructured(g, nn, x, nc, conn, el), 0);
-    free(x);
-    free(conn);
-}
-
 static int32_t brute(const pm_grid *g, const double x[2])
 {
     for (size_t c = 0; c < g->n_cells; c++)
@@ -63,7 +25,7 @@ static void agrees_with_brute_force(void **state)
     (void)state;
     for (int el = 0; el < 2; el++) {
         pm_grid g;
-        jittered(&g, 40, el ? PM_TRI3 : PM_QUAD4, 0.2, 5);
+        assert_int_equal(sc_jittered_grid(&g, 40, el ? PM_TRI3 : PM_QUAD4, 0.5, 0.2, 5), 0);
         unsigned seed = 9;
         int same = 0, inside = 0;
         const int npts = 20000;
@@ -90,7 +52,7 @@ static void walk_from_hint(void **state)
 {
     (void)state;
     pm_grid g;
-    jittered(&g, 50, PM_TRI3, 0.0, 11);
+    assert_int_equal(sc_jittered_grid(&g, 50, PM_TRI3, 0.5, 0.0, 11), 0);
     unsigned seed = 3;
     for (int t = 0; t < 5000; t++) {
         double x[2] = {0.05 + 0.9 * sc_rnd(&seed), 0.05 + 0.9 * sc_rnd(&seed)};
@@ -108,7 +70,7 @@ static void million_points_fast(void **state)
 {
     (void)state;
     pm_grid g;
-    jittered(&g, 300, PM_TRI3, 0.0, 17);
+    assert_int_equal(sc_jittered_grid(&g, 300, PM_TRI3, 0.5, 0.0, 17), 0);
     const size_t n = 1000000;
     double *x = malloc(2 * n * sizeof(double));
     unsigned seed = 23;
@@ -134,7 +96,7 @@ static void linear_on_unstructured(void **state)
     (void)state;
     for (int el = 0; el < 2; el++) {
         pm_grid g;
-        jittered(&g, 12, el ? PM_TRI3 : PM_QUAD4, 0.25, 29);
+        assert_int_equal(sc_jittered_grid(&g, 12, el ? PM_TRI3 : PM_QUAD4, 0.5, 0.25, 29), 0);
         pm_approx *a;
         assert_int_equal(pm_approx_create("linear", &g, &a), 0);
         pm_particles p;
