@@ -23,6 +23,7 @@
 
 #include "shape_internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,11 +43,22 @@
 
 typedef enum mf_kind { MF_MLS, MF_LME, MF_RK } mf_kind;
 
+/* Stencils of the points as of the last connect(), so that the several passes of a step evaluate
+ * each point once: slot entries per point, the position they were computed at as the key. */
+typedef struct mf_cache {
+    size_t n, slot;    /* points, entries per point */
+    int *len;          /* nodes per point; -1: not cached (evaluate afresh) */
+    double *key;       /* 2 per point */
+    int32_t *node;     /* slot per point */
+    double *N, *dN;    /* slot, 2 slot per point */
+} mf_cache;
+
 typedef struct mf_data {
     mf_kind kind;
     pm_cloud *cloud;
     double r0, growth, cond_tol, gamma, beta;
     int min_nodes, max_extra, tensor;
+    mf_cache cache;
 } mf_data;
 
 double pm_cubic_spline(double z, double *dw)
@@ -380,21 +392,114 @@ static int lme_cloud_eval(const mf_data *md, const double x[2], pm_stencil *s)
 
 /* ---- the approximation --------------------------------------------------------------------- */
 
+static void cache_free(mf_cache *c)
+{
+    free(c->len);
+    free(c->key);
+    free(c->node);
+    free(c->N);
+    free(c->dN);
+    memset(c, 0, sizeof *c);
+}
+
+static int cache_alloc(mf_cache *c, size_t n, size_t slot)
+{
+    cache_free(c);
+    c->len = malloc((n ? n : 1) * sizeof *c->len);
+    c->key = malloc(2 * (n ? n : 1) * sizeof *c->key);
+    c->node = malloc((n ? n : 1) * slot * sizeof *c->node);
+    c->N = malloc((n ? n : 1) * slot * sizeof *c->N);
+    c->dN = malloc(2 * (n ? n : 1) * slot * sizeof *c->dN);
+    if (!c->len || !c->key || !c->node || !c->N || !c->dN) {
+        cache_free(c);
+        return pm_error_set(PM_ENOMEM, "out of memory for %zu meshfree stencils", n);
+    }
+    c->n = n;
+    c->slot = slot;
+    return PM_OK;
+}
+
+/* Evaluate every point once into the cache. A stencil longer than the slot leaves the point
+ * uncached and reports its length, so that the caller can widen the slot and try again. */
+static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longest)
+{
+    const mf_data *md = a->data;
+    const mf_cache *c = &md->cache;
+    long first_bad = LONG_MAX;
+    int most = 0;
+#pragma omp parallel for schedule(dynamic, 256) num_threads(a->n_threads) reduction(min : first_bad) \
+    reduction(max : most)
+    for (size_t i = 0; i < p->n; i++) {
+        pm_stencil st;
+        const double *x = p->x + 2 * i;
+        c->len[i] = -1;
+        c->key[2 * i] = x[0];
+        c->key[2 * i + 1] = x[1];
+        if (pm_meshfree_eval(a, x, &st) != PM_OK) {
+            first_bad = (long)i < first_bad ? (long)i : first_bad;
+            continue;
+        }
+        most = st.n > most ? st.n : most;
+        if ((size_t)st.n > c->slot)
+            continue;
+        const size_t o = i * c->slot;
+        memcpy(c->node + o, st.node, (size_t)st.n * sizeof *st.node);
+        memcpy(c->N + o, st.N, (size_t)st.n * sizeof *st.N);
+        memcpy(c->dN + 2 * o, st.dN, 2 * (size_t)st.n * sizeof(double));
+        c->len[i] = st.n;
+    }
+    *bad = first_bad;
+    *longest = most;
+    return PM_OK;
+}
+
+/* Refresh the cell list, then the shape functions of every point at its current position. The
+ * cache is sized on the first call and widened only when a stencil outgrows it. */
 static int mf_connect(pm_approx *a, pm_particles *p)
 {
-    (void)p;
-    const mf_data *md = a->data;
-    return pm_cloud_update(md->cloud, NULL);
+    mf_data *md = a->data;
+    pm_check(pm_cloud_update(md->cloud, NULL));
+    if (!p || p->n == 0)
+        return PM_OK;
+    if (md->cache.n != p->n || md->cache.slot == 0)
+        pm_check(cache_alloc(&md->cache, p->n, md->cache.slot ? md->cache.slot : 24));
+    long bad;
+    int longest;
+    pm_check(cache_fill(a, p, &bad, &longest));
+    if (bad == LONG_MAX && (size_t)longest > md->cache.slot) {
+        pm_check(cache_alloc(&md->cache, p->n, (size_t)longest + 4));
+        pm_check(cache_fill(a, p, &bad, &longest));
+    }
+    if (bad != LONG_MAX) {
+        pm_stencil st;
+        int rc = pm_meshfree_eval(a, p->x + 2 * bad, &st);
+        return pm_error_prefix(rc ? rc : PM_ESIM, "particle %ld at (%g, %g): ", bad, p->x[2 * bad],
+                               p->x[2 * bad + 1]);
+    }
+    return PM_OK;
 }
 
 static int mf_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_stencil *s)
 {
-    int rc = pm_meshfree_eval(a, p->x + 2 * ip, s);
+    const mf_cache *c = &((const mf_data *)a->data)->cache;
+    const double *x = p->x + 2 * ip;
+    if (ip < c->n && c->len[ip] >= 0 && c->key[2 * ip] == x[0] && c->key[2 * ip + 1] == x[1]) {
+        const size_t o = ip * c->slot;
+        s->n = c->len[ip];
+        memcpy(s->node, c->node + o, (size_t)s->n * sizeof *s->node);
+        memcpy(s->N, c->N + o, (size_t)s->n * sizeof *s->N);
+        memcpy(s->dN, c->dN + 2 * o, 2 * (size_t)s->n * sizeof(double));
+        return PM_OK;
+    }
+    int rc = pm_meshfree_eval(a, x, s);
     return rc ? pm_error_prefix(rc, "particle %zu: ", ip) : PM_OK;
 }
 
 static void mf_destroy(pm_approx *a)
 {
+    mf_data *md = a->data;
+    if (md)
+        cache_free(&md->cache);
     free(a->data);
     a->data = NULL;
 }
