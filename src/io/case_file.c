@@ -54,6 +54,39 @@ static int fail(const char *file, const char *path, const char *fmt, const char 
     return pm_error_set(PM_EINPUT, "%s: %s: %s%s", file, path, fmt, detail ? detail : "");
 }
 
+/* Grid kinds for `mpm`, cloud kinds for `gmm` (mls, lme) and `rkpm` (rk_cubic); the default follows
+ * the method: linear, mls, rk_cubic. */
+static int parse_shape_function(pm_case *c, const jr_ctx *cx, json_t *root)
+{
+    static const char *const cloud_kinds[] = {"mls", "rk_cubic", NULL};
+    static const char *const gmm_kinds[] = {"mls", "lme", NULL};
+    static const char *const rkpm_kinds[] = {"rk_cubic", NULL};
+    const char *all[16];
+    int n = 0;
+    for (const char *const *k = pm_approx_names(); *k && n < 12; k++)
+        all[n++] = *k;
+    for (const char *const *k = cloud_kinds; *k; k++)
+        all[n++] = *k;
+    all[n] = NULL;
+    const char *def = c->method == PM_METHOD_GMM ? "mls" : c->method == PM_METHOD_RKPM ? "rk_cubic" : "linear";
+    int v, d = 0;
+    while (all[d] && strcmp(all[d], def) != 0)
+        d++;
+    pm_check(jr_enum(cx, root, "shape_function", 0, all, d, &v));
+    snprintf(c->shape_function, sizeof c->shape_function, "%s", all[v]);
+    const char *const *ok = c->method == PM_METHOD_GMM ? gmm_kinds : c->method == PM_METHOD_RKPM ? rkpm_kinds
+                                                                                                 : pm_approx_names();
+    for (const char *const *k = ok; *k; k++)
+        if (strcmp(*k, c->shape_function) == 0)
+            return PM_OK;
+    char list[256] = "";
+    for (const char *const *k = ok; *k; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k == ok ? "" : ", ", *k);
+    return pm_error_set(PM_EINPUT, "%s: shape_function: \"%s\" does not go with method '%s' (allowed: %s)", c->file,
+                        c->shape_function, c->method == PM_METHOD_GMM ? "gmm" : c->method == PM_METHOD_RKPM ? "rkpm" : "mpm",
+                        list);
+}
+
 static int parse_analysis(pm_case *c, json_t *a)
 {
     jr_ctx cx = {c->file, "analysis"};
@@ -644,8 +677,7 @@ static int parse_root(pm_case *c, json_t *root)
     c->formulation = (pm_formulation)v;
     pm_check(jr_enum(&cx, root, "method", 0, methods, PM_METHOD_MPM, &v));
     c->method = (pm_method)v;
-    pm_check(jr_enum(&cx, root, "shape_function", 0, pm_approx_names(), 0, &v));
-    snprintf(c->shape_function, sizeof c->shape_function, "%s", pm_approx_names()[v]);
+    pm_check(parse_shape_function(c, &cx, root));
     pm_check(jr_number(&cx, root, "lme_gamma", 0, NAN, &c->lme_gamma));
     if (!isnan(c->lme_gamma))
         pm_check(jr_range(&cx, "lme_gamma", c->lme_gamma, 0, 1, INFINITY, 0));
