@@ -89,6 +89,8 @@ typedef struct pm_sim {
     double *rho_work;    /**< density from positions: n_nodes + n_cells doubles */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
     struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
+    struct pm_mf *mf;    /**< GMM/RKPM: node cloud, moving nodes, boundary rows (NULL for MPM); grid then
+                              holds the cloud's nodes without cells */
     pm_scatter scatter;  /**< scatter strategy of the explicit steps (set at creation only) */
     size_t *blocks;      /**< colour scatter: first particle of each of the 2 x threads row blocks, then n */
     int n_blocks;        /**< colour scatter: blocks in use (0: not cut yet) */
@@ -112,6 +114,14 @@ void pm_sim_destroy(pm_sim *s);
  *        of the particle positions (seed 004 eqs. 12-13); the case's `density_update: positions`.
  *        Needs located particles (connect).
  */
+/**
+ * @brief The grid that frames output and pictures: the case's grid (GMM/RKPM keep it after their
+ *        nodes replaced it in pm_sim::grid).
+ * @param s the simulation
+ * @return the grid
+ */
+const pm_grid *pm_sim_frame_grid(const pm_sim *s);
+
 int pm_sim_volumes_from_positions(pm_sim *s);
 
 /**

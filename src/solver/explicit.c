@@ -11,6 +11,7 @@
  */
 #include "pmech/sim.h"
 #include "pmech/error.h"
+#include "meshfree_internal.h"
 
 #include <limits.h>
 #include <math.h>
@@ -505,6 +506,8 @@ static void grid_update(pm_sim *s, double dt, int constrain_start)
                 nd->acc[2 * n + d] = (nd->vel_new[2 * n + d] - nd->vel[2 * n + d]) / dt;
         }
     }
+    if (s->mf && s->mf->transform)
+        pm_mf_impose_update(s, dt, constrain_start);
 }
 
 /* Velocities re-projected from particle momentum (MUSL) or P2G momentum (USF start) with constraints. */
@@ -530,6 +533,8 @@ static void grid_velocity_from_momentum(pm_sim *s, double *out)
         apply_contact_normal(fn, out + 2 * fn->node);
         constrain(nd, fn->node, out + 2 * fn->node);
     }
+    if (s->mf && s->mf->transform)
+        pm_mf_impose(s, out, 0);
 }
 
 /* Pass 1 of every scheme: mass, momentum (of v + shift * a) and optionally forces to the grid. */
@@ -971,6 +976,8 @@ static int step_newmark_pc(pm_sim *s, double dt)
         for (int d = 0; d < 2; d++)
             nd->acc[2 * n + d] = (nd->vel_new[2 * n + d] - nd->vel[2 * n + d]) / (gamma * dt);
     }
+    if (s->mf && s->mf->transform)
+        pm_mf_impose(s, nd->acc, 1);
 #pragma omp parallel num_threads(nd->n_threads)
     {
         pm_stencil st;
@@ -1034,5 +1041,7 @@ int pm_explicit_step(pm_sim *s, double dt)
         return rc;
     s->t += dt;
     s->step++;
+    if (s->mf) /* the particles moved with the predicted velocity in the predictor-corrector */
+        return pm_mf_after_explicit(s, dt, s->c->analysis.scheme == PM_SCHEME_NEWMARK_PC ? s->nd.vel : s->nd.vel_new);
     return PM_OK;
 }

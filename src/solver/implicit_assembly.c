@@ -5,6 +5,7 @@
  *   r = f_ext - f_int - M a,    K = sum_p V_p (B^T D B + G^T sigma G) + M / (beta dt^2).
  */
 #include "implicit_internal.h"
+#include "meshfree_internal.h"
 
 #include "pmech/error.h"
 
@@ -56,7 +57,8 @@ int pm_implicit_ws_alloc(pm_sim *s)
     w->vol_n = malloc((n + 1) * sizeof(double));
     w->x_n = malloc((2 * n + 1) * sizeof(double));
     w->eps_n = malloc((n + 1) * sizeof(double));
-    w->st_off = malloc((n + 1) * sizeof(int32_t));
+    w->n_rows = n + pm_mf_constraint_rows(s); /* meshfree constraint rows after the particles */
+    w->st_off = malloc((w->n_rows + 1) * sizeof(int32_t));
     w->st_node = malloc(w->st_cap * sizeof(int32_t) + 1);
     w->st_N = malloc(w->st_cap * sizeof(double) + 1);
     w->st_dN = malloc(2 * w->st_cap * sizeof(double) + 1);
@@ -98,7 +100,30 @@ void pm_implicit_free(pm_sim *s)
     s->implicit = NULL;
 }
 
-/* Shape functions of every particle at its start-of-step position, packed. */
+/* Room for at least cap packed stencil entries. */
+static int reserve_stencils(pm_implicit_ws *w, size_t cap)
+{
+    if (cap <= w->st_cap)
+        return PM_OK;
+    int32_t *nd = grow(w->st_node, cap, sizeof *nd);
+    if (nd)
+        w->st_node = nd;
+    double *Nv = nd ? grow(w->st_N, cap, sizeof *Nv) : NULL;
+    if (Nv)
+        w->st_N = Nv;
+    double *dv = Nv ? grow(w->st_dN, 2 * cap, sizeof *dv) : NULL;
+    if (dv)
+        w->st_dN = dv;
+    int32_t *ix = dv ? grow(w->np_idx, cap, sizeof *ix) : NULL;
+    if (!ix)
+        return pm_error_set(PM_ENOMEM, "out of memory for particle stencils");
+    w->np_idx = ix;
+    w->st_cap = cap;
+    return PM_OK;
+}
+
+/* Shape functions of every particle at its start-of-step position, packed (then the meshfree
+ * constraint rows, which only shape the sparse pattern). */
 static int store_stencils(pm_sim *s, pm_implicit_ws *w)
 {
     size_t off = 0;
@@ -106,24 +131,9 @@ static int store_stencils(pm_sim *s, pm_implicit_ws *w)
     for (size_t i = 0; i < w->n; i++) {
         if (s->approx->ops->eval(s->approx, &s->p, i, &st) != PM_OK)
             return pm_error_prefix(PM_ESIM, "step %ld: ", s->step + 1);
-        if (off + (size_t)st.n > w->st_cap) {
-            /* wider stencils than the first guess (B-splines, LME): grow once */
-            size_t cap = 2 * (off + (size_t)st.n) + (w->n - i) * (size_t)st.n;
-            int32_t *nd = grow(w->st_node, cap, sizeof *nd);
-            if (nd)
-                w->st_node = nd;
-            double *Nv = nd ? grow(w->st_N, cap, sizeof *Nv) : NULL;
-            if (Nv)
-                w->st_N = Nv;
-            double *dv = Nv ? grow(w->st_dN, 2 * cap, sizeof *dv) : NULL;
-            if (dv)
-                w->st_dN = dv;
-            int32_t *ix = dv ? grow(w->np_idx, cap, sizeof *ix) : NULL;
-            if (!ix)
-                return pm_error_set(PM_ENOMEM, "out of memory for particle stencils");
-            w->np_idx = ix;
-            w->st_cap = cap;
-        }
+        /* wider stencils than the first guess (B-splines, LME, meshfree): grow once */
+        if (off + (size_t)st.n > w->st_cap)
+            pm_check(reserve_stencils(w, 2 * (off + (size_t)st.n) + (w->n_rows - i) * (size_t)st.n));
         w->st_off[i] = (int32_t)off;
         for (int k = 0; k < st.n; k++) {
             w->st_node[off + k] = st.node[k];
@@ -133,7 +143,19 @@ static int store_stencils(pm_sim *s, pm_implicit_ws *w)
         }
         off += (size_t)st.n;
     }
-    w->st_off[w->n] = (int32_t)off;
+    for (size_t r = w->n; r < w->n_rows; r++) {
+        const int32_t *cols;
+        const double *vals;
+        const int m = pm_mf_constraint_stencil(s, r - w->n, &cols, &vals);
+        w->st_off[r] = (int32_t)off;
+        if (off + (size_t)m > w->st_cap)
+            pm_check(reserve_stencils(w, 2 * (off + (size_t)m) + (w->n_rows - r) * PM_STENCIL_MAX));
+        memcpy(w->st_node + off, cols, (size_t)m * sizeof *cols);
+        memcpy(w->st_N + off, vals, (size_t)m * sizeof *vals);
+        memset(w->st_dN + 2 * off, 0, 2 * (size_t)m * sizeof(double));
+        off += (size_t)m;
+    }
+    w->st_off[w->n_rows] = (int32_t)off;
     return PM_OK;
 }
 
@@ -189,6 +211,10 @@ static void project(pm_sim *s, pm_implicit_ws *w)
             }
         }
     }
+    /* GMM and RKPM nodes keep their own velocity and acceleration from the last step (seed 000
+     * Algorithm 2: the predictor uses the nodal values of the previous step, as in FEM) */
+    if (s->mf && !w->quasi_static)
+        pm_mf_nodal_history(s, w->vn, w->an);
 }
 
 /* Unknowns: the free components of nodes that carry material, numbered node by node. */
@@ -260,14 +286,14 @@ static int build_pattern(pm_implicit_ws *w)
 {
     const size_t nn = w->nn;
     memset(w->np_off, 0, (nn + 1) * sizeof(int32_t));
-    const int32_t ntot = w->st_off[w->n];
+    const int32_t ntot = w->st_off[w->n_rows];
     for (int32_t k = 0; k < ntot; k++)
         w->np_off[w->st_node[k] + 1]++;
     for (size_t I = 0; I < nn; I++)
         w->np_off[I + 1] += w->np_off[I];
     for (size_t I = 0; I < nn; I++)
         w->mark[I] = w->np_off[I]; /* fill cursor */
-    for (size_t i = 0; i < w->n; i++)
+    for (size_t i = 0; i < w->n_rows; i++)
         for (int32_t k = w->st_off[i]; k < w->st_off[i + 1]; k++)
             w->np_idx[w->mark[w->st_node[k]]++] = (int32_t)i;
     for (size_t I = 0; I < nn; I++)
@@ -437,5 +463,7 @@ int pm_implicit_evaluate(pm_sim *s, pm_implicit_ws *w, int want_K)
                 w->react[k] = -r;
             }
         }
+    if (s->mf && w->n_rows > w->n)
+        pm_mf_penalty(s, w, want_K);
     return 0;
 }

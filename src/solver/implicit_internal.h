@@ -11,6 +11,7 @@
  * when the particle stencils need more room, so steps do not allocate once running. */
 typedef struct pm_implicit_ws {
     size_t n;                 /* particles */
+    size_t n_rows;            /* packed stencils: the particles', then meshfree constraint rows */
     size_t nn;                /* grid nodes */
     double dt;                /* the step being attempted */
     int quasi_static;         /* 1: no inertia */

@@ -24,8 +24,11 @@ static int check_supported(const pm_case *c)
                                     "%s: boundary_conditions[%zu].type: 'friction' needs analysis.type 'explicit' "
                                     "(implicit contact is not available in this version); use 'fixed' or 'velocity'",
                                     c->file, b);
-    if (c->method != PM_METHOD_MPM)
-        return pm_error_set(PM_EINPUT, "%s: method: only 'mpm' is available in this version", c->file);
+    if (c->method != PM_METHOD_MPM && c->analysis.density_from_positions)
+        return pm_error_set(PM_EINPUT,
+                            "%s: analysis.density_from_positions: needs the cells of method 'mpm'; meshfree "
+                            "methods keep the volume from det F",
+                            c->file);
     return PM_OK;
 }
 
@@ -54,7 +57,7 @@ static int write_frame(pm_output *out, const pm_sim *s, const char *dir, int *fr
         snprintf(path, sizeof path, "%s/particles_%06d.png", dir, *frame);
         snprintf(title, sizeof title, "%s   t = %.4g s   %s", s->c->title, s->t, field);
         int f = pm_field_from_name(field);
-        pm_check(pm_render_particles(path, &s->grid, &s->p, f < 0 ? PM_FIELD_BODY : (pm_field)f, 800, title));
+        pm_check(pm_render_particles(path, pm_sim_frame_grid(s), &s->p, f < 0 ? PM_FIELD_BODY : (pm_field)f, 800, title));
     }
     (*frame)++;
     return PM_OK;
@@ -163,7 +166,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     int rc = PM_OK, frame = 0;
     const char *dir = o->out_dir ? o->out_dir : c->output.directory;
     if (o->write_output) {
-        rc = pm_output_open(&out, dir, c, &s->grid, &s->p);
+        rc = pm_output_open(&out, dir, c, pm_sim_frame_grid(s), &s->p);
         if (!rc)
             rc = write_frame(out, s, dir, &frame);
         if (!rc)

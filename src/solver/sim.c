@@ -5,6 +5,7 @@
 #include "pmech/implicit.h"
 
 #include "core/seed.h"
+#include "meshfree_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -102,6 +103,9 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
                 return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no boundary '%s' in the grid",
                                     c->file, b, bc->boundary);
         }
+        if (set->n == 0)
+            return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no node lies on '%s' at t = 0",
+                                c->file, b, set->name);
         if (bc->type == PM_BC_FRICTION) {
             if (set->normal[0] == 0 && set->normal[1] == 0)
                 return pm_error_set(PM_EINPUT,
@@ -197,17 +201,20 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     int rc = build_grid(c, &s->grid);
     if (rc)
         goto fail;
-    pm_approx_opts aopts = {.lme_gamma = c->lme_gamma, .support_radius = c->support_radius};
-    rc = pm_approx_create_opts(c->shape_function, &s->grid, &aopts, &s->approx);
-    if (rc) {
-        pm_error_prefix(rc, "%s: shape_function: ", c->file);
-        goto fail;
+    const int meshfree = c->method != PM_METHOD_MPM;
+    if (!meshfree) {
+        pm_approx_opts aopts = {.lme_gamma = c->lme_gamma, .support_radius = c->support_radius};
+        rc = pm_approx_create_opts(c->shape_function, &s->grid, &aopts, &s->approx);
+        if (rc) {
+            pm_error_prefix(rc, "%s: shape_function: ", c->file);
+            goto fail;
+        }
+        s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
+        s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
+                                      s->grid.element == PM_QUAD4;
     }
-    s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
-    s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
-                                  s->grid.element == PM_QUAD4;
     s->scatter = scatter_strategy();
-    if (!s->approx->fast_linear_quad)
+    if (meshfree || !s->approx->fast_linear_quad)
         s->scatter = PM_SCATTER_BUFFERS; /* the row blocks need a structured grid's rows and 2 x 2 stencils */
     s->blocks = malloc((2 * (size_t)(n_threads < 1 ? 1 : n_threads) + 1) * sizeof(size_t));
     size_t *per_body = calloc(c->n_bodies ? c->n_bodies : 1, sizeof(size_t)), total = 0;
@@ -220,11 +227,12 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     if (rc)
         goto fail;
     if ((rc = pm_particles_alloc(&s->p, total, max_state(c))) != 0 ||
-        (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 ||
+        (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 || (meshfree && (rc = pm_mf_create(s, n_threads)) != 0) ||
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads, s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
-        (rc = apply_bcs(c, &s->grid, &s->nd)) != 0)
+        (rc = apply_bcs(c, &s->grid, &s->nd)) != 0 || (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
         goto fail;
-    s->sort_interval = 50;
+    /* meshfree points are not binned by cell, and RKPM's particles are its nodes: never reordered */
+    s->sort_interval = meshfree ? 0 : 50;
     s->perm = malloc((s->p.n ? s->p.n : 1) * sizeof(uint32_t));
     s->bucket = malloc((s->grid.n_cells + 1) * sizeof(uint32_t));
     s->scratch = malloc((s->p.n ? s->p.n : 1) * sizeof(double));
@@ -262,6 +270,7 @@ void pm_sim_destroy(pm_sim *s)
         return;
     pm_implicit_free(s);
     pm_approx_destroy(s->approx);
+    pm_mf_destroy(s);
     pm_particles_free(&s->p);
     free(s->perm);
     free(s->bucket);
@@ -274,6 +283,11 @@ void pm_sim_destroy(pm_sim *s)
     free_nodal(&s->nd);
     pm_grid_free(&s->grid);
     free(s);
+}
+
+const pm_grid *pm_sim_frame_grid(const pm_sim *s)
+{
+    return s->mf ? &s->mf->background : &s->grid;
 }
 
 void pm_sim_gravity(const pm_sim *s, double t, double g[2])
