@@ -35,6 +35,10 @@ typedef struct pm_meshfree_opts {
     int min_nodes;         /**< adaptive search: fewest nodes; default 6 (MLS, RK), 3 (LME) */
     int lme_max_extra;     /**< LME: most nodes added one by one while cond(J) > cond_tol; default 8 */
     int rk_tensor;         /**< RK: 1 tensor-product kernel (seed 002 eq. 11), 0 radial; default 0 */
+    int smoothing;         /**< gradients at the solver's points: 1 smoothed over each point's cell (stabilised
+                                conforming nodal integration), -1 point gradients; 0 = default: smoothed for
+                                rk_cubic (its nodes are its integration points), point gradients otherwise */
+    int axisymmetric;      /**< 1: point volumes are per radian (x = radius), so a smoothing cell's area is V / x */
 } pm_meshfree_opts;
 
 /**

@@ -57,7 +57,7 @@ typedef struct mf_data {
     mf_kind kind;
     pm_cloud *cloud;
     double r0, growth, cond_tol, gamma, beta;
-    int min_nodes, max_extra, tensor;
+    int min_nodes, max_extra, tensor, smooth, axisym;
     mf_cache cache;
 } mf_data;
 
@@ -419,12 +419,58 @@ static int cache_alloc(mf_cache *c, size_t n, size_t slot)
     return PM_OK;
 }
 
+/*
+ * Stabilised conforming nodal integration (Chen et al. 2001): when the integration points are the
+ * nodes themselves (RKPM), point gradients leave spurious zero-energy modes and fail the linear
+ * patch test. The gradient at a point is instead the average over its cell, a square of the
+ * point's area centred on it: grad N_I = 1/A * boundary integral of N_I n, by two Gauss points on
+ * each side. The cells of seeded particles tile the body, so the smoothed gradients integrate a
+ * linear field exactly (the integration constraint that makes the patch test pass). Values N stay
+ * those at the point.
+ */
+static int smoothed_eval(const pm_approx *a, const double x[2], double half, pm_stencil *s)
+{
+    pm_check(pm_meshfree_eval(a, x, s));
+    for (int k = 0; k < s->n; k++)
+        s->dN[k][0] = s->dN[k][1] = 0.0;
+    static const double g = 0.57735026918962576; /* 1 / sqrt 3 */
+    static const double nrm[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    for (int e = 0; e < 4; e++) {
+        for (int q = 0; q < 2; q++) {
+            const double t = (q ? g : -g) * half;
+            const double xq[2] = {x[0] + nrm[e][0] * half - nrm[e][1] * t, x[1] + nrm[e][1] * half + nrm[e][0] * t};
+            pm_stencil sq;
+            pm_check(pm_meshfree_eval(a, xq, &sq));
+            for (int k = 0; k < sq.n; k++) {
+                int at = 0;
+                while (at < s->n && s->node[at] != sq.node[k])
+                    at++;
+                if (at == s->n) {
+                    if (s->n == PM_STENCIL_MAX)
+                        return pm_error_set(PM_ESIM, "the smoothing cell at (%g, %g) touches more than %d nodes: "
+                                            "reduce support_radius", x[0], x[1], PM_STENCIL_MAX);
+                    s->node[at] = sq.node[k];
+                    s->N[at] = 0.0;
+                    s->dN[at][0] = s->dN[at][1] = 0.0;
+                    s->n++;
+                }
+                /* each Gauss point weighs half a side: half; the area is (2 half)^2 */
+                const double w = sq.N[k] * half / (4 * half * half);
+                s->dN[at][0] += w * nrm[e][0];
+                s->dN[at][1] += w * nrm[e][1];
+            }
+        }
+    }
+    return PM_OK;
+}
+
 /* Evaluate every point once into the cache. A stencil longer than the slot leaves the point
  * uncached and reports its length, so that the caller can widen the slot and try again. */
 static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longest)
 {
     const mf_data *md = a->data;
     const mf_cache *c = &md->cache;
+    const int axisym = md->axisym;
     long first_bad = LONG_MAX;
     int most = 0;
 #pragma omp parallel for schedule(dynamic, 256) num_threads(a->n_threads) reduction(min : first_bad) \
@@ -435,7 +481,11 @@ static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longe
         c->len[i] = -1;
         c->key[2 * i] = x[0];
         c->key[2 * i + 1] = x[1];
-        if (pm_meshfree_eval(a, x, &st) != PM_OK) {
+        /* the cell of a point: its area (per radian in axisymmetric runs the volume is r times it) */
+        const double area = p->vol && p->vol[i] > 0 ? p->vol[i] / (axisym && x[0] > 0 ? x[0] : 1.0) : 0.0;
+        const int rc = md->smooth && area > 0 ? smoothed_eval(a, x, 0.5 * sqrt(area), &st)
+                                              : pm_meshfree_eval(a, x, &st);
+        if (rc != PM_OK) {
             first_bad = (long)i < first_bad ? (long)i : first_bad;
             continue;
         }
@@ -539,7 +589,8 @@ int pm_meshfree_eval(const pm_approx *a, const double x[2], pm_stencil *s)
 pm_meshfree_opts pm_meshfree_opts_default(void)
 {
     return (pm_meshfree_opts){.support_radius = NAN, .dilation = NAN, .lme_gamma = NAN, .cond_tol = NAN,
-                              .growth = NAN, .min_nodes = 0, .lme_max_extra = 0, .rk_tensor = 0};
+                              .growth = NAN, .min_nodes = 0, .lme_max_extra = 0, .rk_tensor = 0,
+                              .smoothing = 0, .axisymmetric = 0};
 }
 
 /* A set option must be a positive finite number; NAN means "default". */
@@ -597,6 +648,8 @@ int pm_approx_create_cloud(const char *name, pm_cloud *cloud, const pm_meshfree_
     md->min_nodes = o.min_nodes > 0 ? o.min_nodes : kind == MF_LME ? MF_DEFAULT_LME_MIN_NODES : MF_DEFAULT_MIN_NODES;
     md->max_extra = o.lme_max_extra > 0 ? o.lme_max_extra : MF_DEFAULT_LME_EXTRA;
     md->tensor = kind == MF_RK && o.rk_tensor;
+    md->smooth = o.smoothing > 0 || (o.smoothing == 0 && kind == MF_RK);
+    md->axisym = o.axisymmetric != 0;
     if (!rc && !(md->growth > 1))
         rc = pm_error_set(PM_EINPUT, "%s: growth must exceed 1, not %g", name, md->growth);
     if (!rc && (md->min_nodes < 3 || md->min_nodes > PM_STENCIL_MAX || o.min_nodes < 0))
