@@ -5,7 +5,7 @@
  * the centre moves along x with a = (2/3) |g| sin(theta) and u(t) = a t^2 / 2.
  *
  * The case (tests/verification/cases/rolling_disk.json) is a coarse copy of examples/rolling_disk:
- * h = R/8 instead of R/25 and 0.3 s instead of 1 s, so that the nine runs below stay well under a minute.
+ * h = R/8 instead of R/25 and 0.3 s instead of 1 s, so that the three runs of a row take about 2 s.
  * For every row of ROWS (method, shape function) and every step dt1 = 2 dt2 = 4 dt3 (dt1 = the case's
  * analysis.dt) it reports, as seed 000 Table 1 does,
  *   - the error of eq. 67, sqrt(sum_i (u(t_i) - u_num(t_i))^2) over t_i = 0.01, 0.02, ... s, in mm,
