@@ -53,11 +53,11 @@ static void check_tangent_of(const char *formulation, const char *type, const ch
     }
     /* meshfree boundary rows: an increment that meets them, so that the residual does not carry the
      * penalty force of a violated constraint, whose size would drown the differences in round-off */
-    for (int c = 0; s->mf && c < 2; c++)
-        if (s->mf->kd[c]) {
+    for (int comp = 0; s->mf && comp < 2; comp++)
+        if (s->mf->kd[comp]) {
             double zero[256] = {0};
-            assert_true(pm_kd_size(s->mf->kd[c]) <= 256);
-            assert_int_equal(pm_kd_impose(s->mf->kd[c], zero, 2, c, w->du), 0);
+            assert_true(pm_kd_size(s->mf->kd[comp]) <= 256);
+            assert_int_equal(pm_kd_impose(s->mf->kd[comp], zero, 2, comp, w->du), 0);
         }
     assert_int_equal(pm_implicit_evaluate(s, w, 1), 0);
     const int n = w->n_dof, nnz = w->K.nnz;
