@@ -96,7 +96,9 @@ static void iso_quad_points(const pm_grid *g, size_t cell, int n, cell_points *c
         }
 }
 
-static void quad_points(const pm_grid *g, size_t cell, int n, cell_points *cp)
+/* uniform: the centres of n x n equal sub-squares (RKPM, whose particles are its nodes and whose
+ * smoothed gradients need point-centred cells that tile the body), else Gauss points. */
+static void quad_points(const pm_grid *g, size_t cell, int n, int uniform, cell_points *cp)
 {
     if (!g->structured) {
         iso_quad_points(g, cell, n, cp);
@@ -109,9 +111,9 @@ static void quad_points(const pm_grid *g, size_t cell, int n, cell_points *cp)
     for (int j = 0; j < n; j++)
         for (int i = 0; i < n; i++) {
             int k = cp->n++;
-            cp->x[k][0] = a[0] + 0.5 * (1 + gl_x[n - 1][i]) * hx;
-            cp->x[k][1] = a[1] + 0.5 * (1 + gl_x[n - 1][j]) * hy;
-            cp->w[k] = 0.25 * gl_w[n - 1][i] * gl_w[n - 1][j] * hx * hy;
+            cp->x[k][0] = a[0] + (uniform ? (i + 0.5) / n : 0.5 * (1 + gl_x[n - 1][i])) * hx;
+            cp->x[k][1] = a[1] + (uniform ? (j + 0.5) / n : 0.5 * (1 + gl_x[n - 1][j])) * hy;
+            cp->w[k] = uniform ? hx * hy / (n * n) : 0.25 * gl_w[n - 1][i] * gl_w[n - 1][j] * hx * hy;
             cp->hs[k][0] = 0.5 * hx / n;
             cp->hs[k][1] = 0.5 * hy / n;
         }
@@ -154,10 +156,10 @@ static void tri_points(const pm_grid *g, size_t cell, int n, cell_points *cp)
     }
 }
 
-static void cell_quadrature(const pm_grid *g, size_t cell, int n, cell_points *cp)
+static void cell_quadrature(const pm_grid *g, size_t cell, int n, int uniform, cell_points *cp)
 {
     if (g->element == PM_QUAD4)
-        quad_points(g, cell, n, cp);
+        quad_points(g, cell, n, uniform, cp);
     else
         tri_points(g, cell, n, cp);
 }
@@ -221,7 +223,7 @@ static size_t seed_body(const pm_case *c, size_t b, const pm_grid *g, pm_particl
         const size_t cell = group ? (size_t)group->cells[iv] : iv;
         if (!group && !cell_may_touch(g, cell, lo, hi))
             continue;
-        cell_quadrature(g, cell, n, &cp);
+        cell_quadrature(g, cell, n, c->method == PM_METHOD_RKPM, &cp);
         for (int q = 0; q < cp.n; q++) {
             if (!group && !pm_shape_contains(&body->shape, cp.x[q]))
                 continue;
