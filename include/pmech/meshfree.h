@@ -144,6 +144,17 @@ int pm_kd_create(const pm_approx *a, size_t nb, const int32_t *nodes, pm_kd **ou
  */
 int pm_kd_update(pm_kd *kd, const pm_approx *a);
 
+/**
+ * @brief Evaluate row j at x_J + offsets[2 j] instead of at x_J, here and in later updates: the
+ *        value is then prescribed there (RKPM: on the side a boundary node lies next to, not at the
+ *        node a fraction of a spacing inside it).
+ * @param kd the transformation
+ * @param a the approximation it was created with
+ * @param offsets 2 per row
+ * @return PM_OK, PM_ENOMEM, or the status of pm_meshfree_eval()
+ */
+int pm_kd_set_offsets(pm_kd *kd, const pm_approx *a, const double *offsets);
+
 /** @brief Free a transformation (NULL is fine). @param kd the transformation */
 void pm_kd_destroy(pm_kd *kd);
 

@@ -32,6 +32,7 @@ struct pm_kd {
     double *val;     /* nb * PM_STENCIL_MAX */
     double *diag;    /* nb: Psi_J(x_J), the Jacobi preconditioner */
     double *work;    /* 10 nb: BiCGStab's 8 vectors, the correction, the right-hand side */
+    double *offset;  /* 2 nb or NULL: rows evaluated at x_J + offset_J instead of x_J */
 };
 
 void pm_kd_destroy(pm_kd *kd)
@@ -45,6 +46,7 @@ void pm_kd_destroy(pm_kd *kd)
     free(kd->val);
     free(kd->diag);
     free(kd->work);
+    free(kd->offset);
     free(kd);
 }
 
@@ -56,7 +58,12 @@ int pm_kd_update(pm_kd *kd, const pm_approx *a)
     for (size_t j = 0; j < kd->nb; j++) {
         pm_stencil s;
         const int32_t J = kd->node[j];
-        int rc = pm_meshfree_eval(a, c->x + 2 * (size_t)J, &s);
+        double x[2] = {c->x[2 * (size_t)J], c->x[2 * (size_t)J + 1]};
+        if (kd->offset) {
+            x[0] += kd->offset[2 * j];
+            x[1] += kd->offset[2 * j + 1];
+        }
+        int rc = pm_meshfree_eval(a, x, &s);
         if (rc)
             return pm_error_prefix(rc, "Kronecker transformation at boundary node %d: ", (int)J);
         kd->rowlen[j] = s.n;
@@ -246,4 +253,12 @@ int pm_kd_impose(pm_kd *kd, const double *g, int stride, int comp, double *coef)
                         "Kronecker transformation: the boundary values were not reached (largest error %g, "
                         "values up to %g)",
                         res, scale);
+}
+
+int pm_kd_set_offsets(pm_kd *kd, const pm_approx *a, const double *offsets)
+{
+    if (!kd->offset && !(kd->offset = malloc(2 * (kd->nb ? kd->nb : 1) * sizeof(double))))
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    memcpy(kd->offset, offsets, 2 * kd->nb * sizeof(double));
+    return pm_kd_update(kd, a);
 }

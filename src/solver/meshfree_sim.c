@@ -25,9 +25,9 @@
 #include <string.h>
 
 /* Penalty factor of the implicit constraint rows, relative to the stiffness scale of the node: the
- * constraint is then met to about 1e-7 of the displacement, far below the discretisation error,
+ * constraint is then met to about 1e-5 of the displacement, far below the discretisation error,
  * while a direct solver still factors the tangent accurately. */
-#define PM_MF_PENALTY 1e7
+#define PM_MF_PENALTY 1e5
 
 static int side_of(const char *name, int *axis, int *hi)
 {
@@ -243,6 +243,33 @@ static void find_contacts(pm_sim *s)
     }
 }
 
+/* RKPM: a node held by a side condition lies up to half a particle spacing inside that side; its row
+ * is evaluated on the side itself (the node projected onto it), so that the prescribed value holds at
+ * the body's boundary and a uniform strain is the discrete solution of a patch. */
+static int side_offsets(pm_sim *s, int comp)
+{
+    pm_mf *mf = s->mf;
+    const size_t nb = pm_kd_size(mf->kd[comp]);
+    double *off = calloc(2 * (nb ? nb : 1), sizeof(double));
+    if (!off)
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    for (size_t b = 0; b < s->c->n_bcs; b++) {
+        const pm_case_bc *bc = &s->c->bcs[b];
+        int axis, hi;
+        if (bc->type == PM_BC_FRICTION || !(bc->dirs & (1u << comp)) || !side_of(bc->boundary, &axis, &hi))
+            continue;
+        const pm_node_set *set = pm_grid_find_set(&s->grid, bc->boundary);
+        const double at = hi ? mf->background.hi[axis] : mf->background.lo[axis];
+        for (size_t q = 0; set && q < set->n; q++)
+            for (size_t j = 0; j < nb; j++)
+                if (mf->kd_nodes[comp][j] == set->nodes[q])
+                    off[2 * j + axis] = at - s->grid.x[2 * (size_t)set->nodes[q] + axis];
+    }
+    const int rc = pm_kd_set_offsets(mf->kd[comp], s->approx, off);
+    free(off);
+    return rc;
+}
+
 int pm_mf_setup_conditions(pm_sim *s)
 {
     pm_mf *mf = s->mf;
@@ -269,6 +296,8 @@ int pm_mf_setup_conditions(pm_sim *s)
                 nd->fixed[I] &= (uint8_t) ~(1u << c); /* the Lambda rows hold it now, not the nodal value */
             }
         int rc = pm_kd_create(s->approx, nb, mf->kd_nodes[c], &mf->kd[c]);
+        if (!rc && mf->rkpm)
+            rc = side_offsets(s, c);
         if (rc)
             return pm_error_prefix(rc, "%s: boundary_conditions: ", s->c->file);
         most = nb > most ? nb : most;
