@@ -10,8 +10,10 @@
  *  - GMM-LME: 0.5 %, GMM-MLS: 2 %. GMM integrates at the material points without a correction; the
  *    shape functions are not polynomials, so the particle quadrature is not exact and the error
  *    is what this test measures (LME 0.1 %, MLS 1.2 % at 4 points per node).
- *  RKPM (nodes = particles, smoothed conforming nodal integration) is reported only: its boundary
- *  nodes are the outermost particle layer, h/4 inside the sides, so it compresses a shorter column.
+ *  - RKPM: 2 %. Its gradients are smoothed over each particle's square (the squares tile the body,
+ *    so a linear field's internal forces vanish at interior nodes to 1e-9), and the values are
+ *    prescribed at points of the sides; what remains is that point constraints on a side balance
+ *    the boundary integral of the stress only approximately (measured 1.05 %, next to the sides).
  *
  * Dynamics: the vibrating bar of verify_vibration.c (explicit MUSL) with GMM-MLS and GMM-LME: the
  * first mode's period 4 L / c within 0.5 % (the MPM test's tolerance: the grid dispersion at 110
@@ -102,7 +104,7 @@ int main(int argc, char **argv)
     int ok = patch("MPM linear", PM_METHOD_MPM, "linear", 0.002);
     ok &= patch("GMM-MLS", PM_METHOD_GMM, "mls", 0.02);
     ok &= patch("GMM-LME", PM_METHOD_GMM, "lme", 0.005);
-    patch("RKPM (SCNI)", PM_METHOD_RKPM, "rk_cubic", -1);
+    ok &= patch("RKPM (SCNI)", PM_METHOD_RKPM, "rk_cubic", 0.02);
     ok &= vibration("mls");
     ok &= vibration("lme");
     return ok ? 0 : 1;
