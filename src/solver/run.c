@@ -26,8 +26,8 @@ static int check_supported(const pm_case *c)
                                     c->file, b);
     if (c->method != PM_METHOD_MPM && c->analysis.density_from_positions)
         return pm_error_set(PM_EINPUT,
-                            "%s: analysis.density_from_positions: needs the cells of method 'mpm'; meshfree "
-                            "methods keep the volume from det F",
+                            "%s: analysis.density_update: \"positions\" needs the cells of method 'mpm'; with gmm "
+                            "and rkpm use \"deformation\" (volume from det F)",
                             c->file);
     return PM_OK;
 }

@@ -88,6 +88,9 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
     }
     for (size_t b = 0; b < c->n_bcs; b++) {
         const pm_case_bc *bc = &c->bcs[b];
+        /* a meshfree friction condition is a wall that nodes reach later (pm_mf_setup_conditions) */
+        if (bc->type == PM_BC_FRICTION && c->method != PM_METHOD_MPM)
+            continue;
         const pm_node_set *set;
         if (bc->line_axis >= 0) {
             char name[64];
@@ -99,6 +102,11 @@ static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
             set = &g->sets[k];
         } else {
             set = pm_grid_find_set(g, bc->boundary);
+            if (!set && c->method == PM_METHOD_RKPM)
+                return pm_error_set(PM_EINPUT,
+                                    "%s: boundary_conditions[%zu].boundary: '%s': with method rkpm the nodes are the "
+                                    "particles, so only the grid sides x_min, x_max, y_min, y_max name boundaries",
+                                    c->file, b, bc->boundary);
             if (!set)
                 return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no boundary '%s' in the grid",
                                     c->file, b, bc->boundary);

@@ -189,6 +189,26 @@ static void line_boundaries_take_a_range_and_normal(void **st)
     EXPECT("\"boundary\": \"y_min\"", "\"boundary\": { \"y\": 0, \"from\": 1, \"to\": 0.5 }", "from = 1 must be below");
 }
 
+/* method and shape_function go together: gmm takes mls or lme, rkpm rk_cubic, mpm the grid kinds;
+ * the default follows the method */
+static void shape_function_follows_the_method(void **st)
+{
+    (void)st;
+    EXPECT("\"method\": \"mpm\"", "\"method\": \"gmm\"", "shape_function", "\"linear\"", "'gmm'", "mls, lme");
+    EXPECT("\"shape_function\": \"linear\"", "\"shape_function\": \"mls\"", "shape_function", "'mpm'", "linear");
+    EXPECT("\"method\": \"mpm\",\n  \"shape_function\": \"linear\"",
+           "\"method\": \"rkpm\",\n  \"shape_function\": \"lme\"", "'rkpm'", "rk_cubic");
+    pm_case c;
+    assert_int_equal(load_edit("\"method\": \"mpm\",\n  \"shape_function\": \"linear\",\n",
+                               "\"method\": \"gmm\",\n", &c), PM_OK);
+    assert_string_equal(c.shape_function, "mls");
+    pm_case_free(&c);
+    assert_int_equal(load_edit("\"method\": \"mpm\",\n  \"shape_function\": \"linear\",\n",
+                               "\"method\": \"rkpm\",\n", &c), PM_OK);
+    assert_string_equal(c.shape_function, "rk_cubic");
+    pm_case_free(&c);
+}
+
 static void never_crashes_on_truncations(void **st)
 {
     (void)st;
@@ -240,6 +260,7 @@ int main(void)
         cmocka_unit_test(physical_nonsense_is_refused),
         cmocka_unit_test(plastic_parameters_are_checked),
         cmocka_unit_test(line_boundaries_take_a_range_and_normal),
+        cmocka_unit_test(shape_function_follows_the_method),
         cmocka_unit_test(never_crashes_on_truncations),
         cmocka_unit_test(driver_files_load),
     };
