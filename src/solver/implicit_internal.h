@@ -57,11 +57,6 @@ typedef struct pm_point_contrib {
     double D[16];                     /* tangent on (xx, yy, zz, xy), engineering shear */
 } pm_point_contrib;
 
-/*
- * Update particle i from the start-of-step state with the nodal displacement increments du: F, stress,
- * state, volume and plastic strain are written to the particle arrays. Fills c (the tangent only when
- * want_tangent). Returns 0, or 1 if the point failed (inverted, NaN, model failure).
- */
 /* Allocate the workspace for s (first step). */
 int pm_implicit_ws_alloc(pm_sim *s);
 
@@ -77,6 +72,11 @@ int pm_implicit_evaluate(pm_sim *s, pm_implicit_ws *w, int want_K);
  * Newton correction). */
 void pm_implicit_regularise(pm_implicit_ws *w, double lambda);
 
+/*
+ * Update particle i from the start-of-step state with the nodal displacement increments du: F, stress,
+ * state, volume and plastic strain are written to the particle arrays. Fills c (the tangent only when
+ * want_tangent). Returns 0, or 1 if the point failed (inverted, NaN, model failure).
+ */
 int pm_implicit_point(pm_sim *s, pm_implicit_ws *w, size_t i, const double *du, int want_tangent,
                       pm_point_contrib *c);
 

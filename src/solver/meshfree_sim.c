@@ -460,8 +460,8 @@ size_t pm_mf_constraint_rows(const pm_sim *s)
     return (s->mf->kd[0] ? pm_kd_size(s->mf->kd[0]) : 0) + (s->mf->kd[1] ? pm_kd_size(s->mf->kd[1]) : 0);
 }
 
-/* Row r counts the x rows first, then the y rows; returns the length, the component in *comp via
- * the caller's knowledge of the split (pm_mf_penalty walks them in the same order). */
+/* Constraint row r (the x rows first, then the y rows, the order pm_mf_penalty walks them): its
+ * nodes and values; returns their number. */
 int pm_mf_constraint_stencil(const pm_sim *s, size_t row, const int32_t **cols, const double **vals)
 {
     const pm_mf *mf = s->mf;
