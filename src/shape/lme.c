@@ -187,9 +187,9 @@ static double log_z(int n, const double (*d)[2], double beta, const double lam[2
     return fmax + log(z > 1 ? z : 1.0);
 }
 
-/* Residual r = sum p d and Hessian J = sum p d d^T - r r^T, formed as sum p (d - r)(d - r)^T: the
- * difference form loses all digits when the weights concentrate on one node (large gamma). */
-static void resid_hess(int n, const double (*d)[2], const double *p, double r[2], double J[3])
+/* Formed as sum p (d - r)(d - r)^T: the difference form sum p d d^T - r r^T loses all digits when
+ * the weights concentrate on one node (large gamma). */
+void pm_lme_resid_hess(int n, const double (*d)[2], const double *p, double r[2], double J[3])
 {
     r[0] = r[1] = J[0] = J[1] = J[2] = 0;
     for (int i = 0; i < n; i++) {
@@ -214,7 +214,7 @@ int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double la
     double lz = log_z(n, d, beta, lambda, N), rprev = INFINITY;
     int it = 0;
     for (;; it++) {
-        resid_hess(n, d, N, r, J);
+        pm_lme_resid_hess(n, d, N, r, J);
         const double rnow = sqrt(r[0] * r[0] + r[1] * r[1]);
         /* converged; or within 100 tol and no longer falling (round-off floor: with large gamma the
          * exponents reach ~ gamma and carry absolute errors ~ 1e-16 gamma) */

@@ -292,17 +292,8 @@ static int inside_hull(int n, const double (*d)[2])
  */
 static double lme_gradients(int n, const double (*d)[2], const double *N, double (*dN)[2])
 {
-    double r[2] = {0, 0}, J[3] = {0, 0, 0};
-    for (int i = 0; i < n; i++) {
-        r[0] += N[i] * d[i][0];
-        r[1] += N[i] * d[i][1];
-    }
-    for (int i = 0; i < n; i++) {
-        const double a = d[i][0] - r[0], b = d[i][1] - r[1];
-        J[0] += N[i] * a * a;
-        J[1] += N[i] * a * b;
-        J[2] += N[i] * b * b;
-    }
+    double r[2], J[3];
+    pm_lme_resid_hess(n, d, N, r, J);
     const double det = J[0] * J[2] - J[1] * J[1];
     if (!(det > 0))
         return INFINITY;

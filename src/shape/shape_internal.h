@@ -36,6 +36,16 @@ int pm_quad4_inverse_map(const pm_grid *g, int32_t cell, const double xp[2], dou
 #define PM_LME_TOL 1e-14
 
 /**
+ * @brief LME residual r = sum p_I d_I and Hessian J = sum p_I (d_I - r)(d_I - r)^T.
+ * @param n number of nodes
+ * @param d offsets x - x_I
+ * @param p weights (shape function values)
+ * @param r receives the residual
+ * @param J receives xx, xy, yy of the Hessian
+ */
+void pm_lme_resid_hess(int n, const double (*d)[2], const double *p, double r[2], double J[3]);
+
+/**
  * Local max-ent shape functions (seed 003 section 2.3) of a point at offsets d_I = x - x_I from
  * @p n nodes: N_I = exp(-beta |d_I|^2 + lambda . d_I) / Z with lambda from Newton's method on
  * log Z (residual r = sum N_I d_I, Hessian J = sum N_I d_I d_I^T - r r^T, backtracking line
