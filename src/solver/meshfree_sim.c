@@ -170,7 +170,20 @@ int pm_mf_create(pm_sim *s, int n_threads)
     return PM_OK;
 }
 
-/* Friction conditions as walls at the grid side or the given line. */
+/* A `fixed` condition on a grid side that holds the side's normal component: the side bounds the
+ * domain as in MPM, where every grid node on it is held. Nodes that reach it later (material
+ * spreading over a base) are stopped there by a wall that sticks when the tangent is held too and
+ * slides freely otherwise; the nodes on it at t = 0 keep their condition as well. */
+static int side_wall(const pm_case_bc *bc, int *axis, int *hi, double *mu)
+{
+    if (bc->type != PM_BC_FIXED || bc->line_axis >= 0 || !side_of(bc->boundary, axis, hi) ||
+        !(bc->dirs & (1u << *axis)))
+        return 0;
+    *mu = (bc->dirs & (1u << (1 - *axis))) ? INFINITY : 0.0;
+    return 1;
+}
+
+/* Friction conditions, and fixed sides, as walls at the grid side or the given line. */
 static int make_walls(pm_sim *s)
 {
     const pm_case *c = s->c;
@@ -179,8 +192,10 @@ static int make_walls(pm_sim *s)
     free(nd->friction);
     nd->friction = NULL;
     nd->n_friction = 0;
+    int axis, hi;
+    double mu;
     for (size_t b = 0; b < c->n_bcs; b++)
-        mf->n_walls += c->bcs[b].type == PM_BC_FRICTION;
+        mf->n_walls += c->bcs[b].type == PM_BC_FRICTION || side_wall(&c->bcs[b], &axis, &hi, &mu);
     if (!mf->n_walls)
         return PM_OK;
     mf->walls = calloc(mf->n_walls, sizeof *mf->walls);
@@ -191,11 +206,18 @@ static int make_walls(pm_sim *s)
     size_t k = 0;
     for (size_t b = 0; b < c->n_bcs; b++) {
         const pm_case_bc *bc = &c->bcs[b];
+        if (side_wall(bc, &axis, &hi, &mu)) {
+            pm_mf_wall *wl = &mf->walls[k++];
+            wl->mu = mu;
+            wl->axis = axis;
+            wl->value = hi ? mf->background.hi[axis] : mf->background.lo[axis];
+            wl->normal[axis] = hi ? 1.0 : -1.0;
+            continue;
+        }
         if (bc->type != PM_BC_FRICTION)
             continue;
         pm_mf_wall *wl = &mf->walls[k++];
         wl->mu = bc->coefficient;
-        int axis, hi;
         if (bc->line_axis >= 0) {
             wl->axis = bc->line_axis;
             wl->value = bc->line_value;
