@@ -97,6 +97,7 @@ typedef struct pm_case {
     char shape_function[PM_NAME_MAX];
     double lme_gamma;             /**< NAN = the approximation's default */
     double support_radius;        /**< NAN = default */
+    double max_condition;         /**< meshfree: condition number above which a support grows; NAN = default */
     struct {
         pm_analysis_type type;
         pm_scheme scheme;

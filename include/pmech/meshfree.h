@@ -29,8 +29,9 @@ typedef struct pm_meshfree_opts {
                                 default: MLS/RK f sqrt(2 h^2), LME where exp(-beta r^2) = 1e-6 */
     double dilation;       /**< f in r = f sqrt(2 h^2) (seed 000); default 1.5 */
     double lme_gamma;      /**< case key `lme_gamma`: gamma = beta h^2; default 1.8 */
-    double cond_tol;       /**< MLS/RK: largest 1-norm condition number of the moment matrix (default
-                                1e6); LME: of the Hessian J (default 1e4) */
+    double cond_tol;       /**< case key `max_condition`: largest 1-norm condition number of the moment
+                                matrix before the support grows (default MLS 1e2, RK 1e6); LME: of the
+                                Hessian J (default 1e4) */
     double growth;         /**< adaptive search: radius factor per step; default 1.25 */
     int min_nodes;         /**< adaptive search: fewest nodes; default 6 (MLS, RK), 3 (LME) */
     int lme_max_extra;     /**< LME: most nodes added one by one while cond(J) > cond_tol; default 8 */

@@ -22,7 +22,7 @@
 #include <unistd.h>
 
 static const char *const top_keys[] = {"title", "dimension", "formulation", "method", "shape_function", "lme_gamma",
-                                       "support_radius", "analysis", "grid", "materials", "bodies",
+                                       "support_radius", "max_condition", "analysis", "grid", "materials", "bodies",
                                        "boundary_conditions", "output", "probes", NULL};
 static const char *const formulations[] = {"plane_strain", "plane_stress", "axisymmetric", NULL};
 static const char *const methods[] = {"mpm", "gmm", "rkpm", NULL};
@@ -684,6 +684,9 @@ static int parse_root(pm_case *c, json_t *root)
     pm_check(jr_number(&cx, root, "support_radius", 0, NAN, &c->support_radius));
     if (!isnan(c->support_radius))
         pm_check(jr_range(&cx, "support_radius", c->support_radius, 0, 1, INFINITY, 0));
+    pm_check(jr_number(&cx, root, "max_condition", 0, NAN, &c->max_condition));
+    if (!isnan(c->max_condition))
+        pm_check(jr_range(&cx, "max_condition", c->max_condition, 1, 0, INFINITY, 0));
     json_t *a = json_object_get(root, "analysis");
     if (!a)
         return fail(c->file, "analysis", "required key is missing", NULL);

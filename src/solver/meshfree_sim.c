@@ -141,6 +141,7 @@ int pm_mf_create(pm_sim *s, int n_threads)
     pm_meshfree_opts o = pm_meshfree_opts_default();
     o.support_radius = c->support_radius;
     o.lme_gamma = c->lme_gamma;
+    o.cond_tol = c->max_condition;
     o.axisymmetric = c->formulation == PM_AXISYMMETRIC;
     rc = pm_approx_create_cloud(c->shape_function, mf->cloud, &o, &s->approx);
     if (rc) {

@@ -207,6 +207,17 @@ static void shape_function_follows_the_method(void **st)
                                "\"method\": \"rkpm\",\n", &c), PM_OK);
     assert_string_equal(c.shape_function, "rk_cubic");
     pm_case_free(&c);
+    /* the conditioning limit of the adaptive supports: absent means the approximation's default */
+    assert_int_equal(load_edit("\"method\": \"mpm\",\n  \"shape_function\": \"linear\",\n",
+                               "\"method\": \"gmm\",\n  \"max_condition\": 1e3,\n", &c), PM_OK);
+    assert_true(c.max_condition == 1e3);
+    pm_case_free(&c);
+    assert_int_equal(load_edit("\"method\": \"mpm\",\n  \"shape_function\": \"linear\",\n",
+                               "\"method\": \"gmm\",\n", &c), PM_OK);
+    assert_true(isnan(c.max_condition));
+    pm_case_free(&c);
+    EXPECT("\"method\": \"mpm\",\n  \"shape_function\": \"linear\",\n",
+           "\"method\": \"gmm\",\n  \"max_condition\": 0.5,\n", "max_condition", "0.5");
 }
 
 static void never_crashes_on_truncations(void **st)
