@@ -5,9 +5,11 @@
  *
  * The cell list is built from the node positions at one moment (pm_cloud_rebuild()) and stays
  * valid while no node has moved more than the skin distance from where it was binned: a query of
- * radius r visits the cells within r + skin, then tests the current positions. The owner moves
- * nodes by writing pm_cloud::x in place and calls pm_cloud_update(), which rebuilds only when the
- * largest displacement since the last build exceeds the skin. Queries never allocate: they write
+ * radius r visits the cells within r + skin, then tests the positions. The owner moves nodes by
+ * writing pm_cloud::x in place and calls pm_cloud_update(), which rebuilds only when the largest
+ * displacement since the last build exceeds the skin, and otherwise copies the positions into the
+ * cell order the queries scan: queries see the positions as of the last update or build, so every
+ * move must be followed by an update before the next query. Queries never allocate: they write
  * into buffers the caller provides, and are safe to run from many threads at once (they only read
  * the cloud).
  */
@@ -41,6 +43,8 @@ typedef struct pm_cloud {
     int32_t *start;   /**< nc[0] * nc[1] + 1 offsets into order */
     int32_t *order;   /**< node indices sorted by cell */
     double *x_built;  /**< positions at the last build, 2 per node */
+    double *x_sorted; /**< positions as of the last update or build, in the order of @c order (what
+                           queries scan: contiguous within a row of cells) */
     size_t cap_cells; /**< allocated length of start */
     size_t n_builds;  /**< number of builds so far (the first one included) */
     double last_move; /**< largest displacement since the last build, as of the last update */
@@ -70,7 +74,8 @@ int pm_cloud_rebuild(pm_cloud *c);
 
 /**
  * @brief After the owner moved nodes: rebuild the cell list if some node moved more than the skin
- *        since the last build; otherwise only record the largest displacement (pm_cloud::last_move).
+ *        since the last build; otherwise record the largest displacement (pm_cloud::last_move) and
+ *        hand the new positions to the queries (pm_cloud::x_sorted).
  * @param c the cloud
  * @param rebuilt receives 1 if the list was rebuilt, 0 if not (may be NULL)
  * @return PM_OK or the status of pm_cloud_rebuild()
@@ -78,7 +83,8 @@ int pm_cloud_rebuild(pm_cloud *c);
 int pm_cloud_update(pm_cloud *c, int *rebuilt);
 
 /**
- * @brief All nodes I with |x_I - x| < r (current positions), in no particular order.
+ * @brief All nodes I with |x_I - x| < r (positions as of the last pm_cloud_update() or
+ *        pm_cloud_rebuild()), in no particular order.
  *
  * Correct as long as no node moved more than the skin since the last build (pm_cloud_update()
  * keeps it so). Writes at most @p cap entries; *n_found is the true count, so a caller can tell

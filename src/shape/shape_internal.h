@@ -3,6 +3,7 @@
 #define PMECH_SHAPE_INTERNAL_H
 
 #include "pmech/approx.h"
+#include "pmech/cloud.h"
 
 /**
  * Locate the background cell of every particle into p->cell (in parallel with a->n_threads),
@@ -31,6 +32,22 @@ int pm_quad4_iso_eval(const pm_grid *g, int32_t cell, const double xp[2], pm_ste
  * @return number of Newton iterations (>= 0), or -1 without convergence
  */
 int pm_quad4_inverse_map(const pm_grid *g, int32_t cell, const double xp[2], double xi[2]);
+
+/**
+ * @brief pm_cloud_query() for the meshfree kinds: no argument checks (x and r finite, r >= 0), and
+ *        the offsets d_I = x - x_I come with the nodes, so the caller need not read the positions
+ *        again.
+ * @param c the cloud
+ * @param x query point
+ * @param r radius
+ * @param cap capacity of @p idx, @p d and @p d2
+ * @param idx receives node indices
+ * @param d receives x - x_I (may be NULL)
+ * @param d2 receives |x - x_I|^2 (may be NULL)
+ * @return the number of nodes with |x - x_I| < r (only the first @p cap are written)
+ */
+int pm_cloud_gather(const pm_cloud *c, const double x[2], double r, int cap, int32_t *idx, double (*d)[2],
+                    double *d2);
 
 /** Newton tolerance of the LME solve, relative to the node spacing h: |sum N_I (x - x_I)| <= tol h. */
 #define PM_LME_TOL 1e-14
