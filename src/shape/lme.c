@@ -49,6 +49,7 @@
 #define LME_PRIOR_TOL 1e-6
 #define LME_MAX_CAND 1024
 #define LME_MAX_IT 100
+#define LME_TAYLOR_MAX 1e-2 /* largest exponent change of a Newton step taken without exp() */
 
 /* Per particle slot: the last stencil and where it was evaluated (see the header comment). */
 typedef struct lme_cache {
@@ -204,22 +205,24 @@ void pm_lme_resid_hess(int n, const double (*d)[2], const double *p, double r[2]
     }
 }
 
-int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N,
-                 double (*dN)[2])
+int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N, double r[2],
+                  double J[3])
 {
-    double r[2], J[3], dmax = 0;
-    for (int i = 0; i < n; i++)
-        dmax = fmax(dmax, sqrt(d[i][0] * d[i][0] + d[i][1] * d[i][1]));
+    double q_max = 0;
+    for (int i = 0; i < n; i++) {
+        const double q = d[i][0] * d[i][0] + d[i][1] * d[i][1];
+        q_max = q > q_max ? q : q_max;
+    }
+    const double dmax = sqrt(q_max);
     const double cap = 4 * beta * dmax + 1 / dmax;
     double lz = log_z(n, d, beta, lambda, N), rprev = INFINITY;
-    int it = 0;
-    for (;; it++) {
+    for (int it = 0;; it++) {
         pm_lme_resid_hess(n, d, N, r, J);
         const double rnow = sqrt(r[0] * r[0] + r[1] * r[1]);
         /* converged; or within 100 tol and no longer falling (round-off floor: with large gamma the
          * exponents reach ~ gamma and carry absolute errors ~ 1e-16 gamma) */
         if (rnow <= tol || (rnow <= 100 * tol && rnow > 0.5 * rprev))
-            break;
+            return it;
         rprev = rnow;
         if (it == LME_MAX_IT)
             return -1;
@@ -232,15 +235,42 @@ int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double la
             step[0] = -r[0] * beta;
             step[1] = -r[1] * beta;
         }
+        const double sn = sqrt(step[0] * step[0] + step[1] * step[1]);
+        /* A step that changes no exponent by more than LME_TAYLOR_MAX (the last one or two of a
+         * solve, and all of one that starts from a nearby point's lambda) updates the weights
+         * without exponentials: N_I(lambda + s) = N_I e^(a_I) / sum_J N_J e^(a_J) with
+         * a_I = s . (d_I - r), |a_I| <= |s| (|d_I| + |r|), and e^a by its Taylor polynomial of
+         * degree 6, whose remainder a^7 / 7! stays below 1e-17 there. The step must pass the same
+         * sufficient-decrease test as below, log Z moving by s . r + log sum_J N_J e^(a_J). */
+        if (det > 1e-300 && isfinite(det) && sn * (dmax + rnow) <= LME_TAYLOR_MAX) {
+            const double slope = r[0] * step[0] + r[1] * step[1];
+            double zs = 0;
+            for (int i = 0; i < n; i++) {
+                const double a = step[0] * (d[i][0] - r[0]) + step[1] * (d[i][1] - r[1]);
+                N[i] *= 1 + a * (1 + a * (1.0 / 2 + a * (1.0 / 6 + a * (1.0 / 24 + a * (1.0 / 120 + a / 720)))));
+                zs += N[i];
+            }
+            const double lz_new = zs > 0 ? lz + slope + log(zs) : INFINITY;
+            if (lz_new <= lz + 1e-4 * slope || (zs > 0 && -slope < 1e-10 * (1 + fabs(lz)))) {
+                const double iz = 1 / zs;
+                for (int i = 0; i < n; i++)
+                    N[i] *= iz;
+                lz = lz_new;
+                lambda[0] += step[0];
+                lambda[1] += step[1];
+                continue;
+            }
+            lz = log_z(n, d, beta, lambda, N); /* not accepted: back to the weights at lambda */
+        }
         /* a step longer than a few beta * (node distance) only happens where J is tiny (the weight
          * sits on one node, large gamma); cap it so that the line search starts at a useful scale */
-        const double sn = sqrt(step[0] * step[0] + step[1] * step[1]);
         if (sn > cap) {
             step[0] *= cap / sn;
             step[1] *= cap / sn;
         }
         /* backtracking on log Z (convex); the gradient of log Z is r */
-        double slope = r[0] * step[0] + r[1] * step[1], t = 1.0, lam[2];
+        const double slope = r[0] * step[0] + r[1] * step[1];
+        double t = 1.0, lam[2];
         int accepted = 0;
         for (int ls = 0; ls < 60; ls++) {
             lam[0] = lambda[0] + t * step[0];
@@ -262,6 +292,15 @@ int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double la
         lambda[0] = lam[0];
         lambda[1] = lam[1];
     }
+}
+
+int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N,
+                 double (*dN)[2])
+{
+    double r[2], J[3];
+    const int it = pm_lme_newton(n, d, beta, tol, lambda, N, r, J);
+    if (it < 0)
+        return -1;
     /* gradients, eq. 39: grad N_I = -N_I J^-1 d_I */
     double det = J[0] * J[2] - J[1] * J[1];
     if (!(det > 0))

@@ -79,4 +79,21 @@ void pm_lme_resid_hess(int n, const double (*d)[2], const double *p, double r[2]
 int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N,
                  double (*dN)[2]);
 
+/**
+ * pm_lme_solve() without the gradients: the Newton iteration alone, which also hands back the
+ * residual and Hessian it last formed (at the returned lambda and N), so that a caller computing
+ * its own gradients need not form them again.
+ * @param n number of nodes (>= 3, not all on one line)
+ * @param d offsets x - x_I
+ * @param beta beta > 0
+ * @param tol absolute tolerance on |r|
+ * @param lambda in: starting guess; out: the solution
+ * @param N receives the n values
+ * @param r receives the final residual sum N_I d_I
+ * @param J receives the final Hessian (xx, xy, yy) as pm_lme_resid_hess() forms it
+ * @return Newton iterations taken (>= 0), or -1 if the solve did not converge
+ */
+int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N, double r[2],
+                  double J[3]);
+
 #endif
