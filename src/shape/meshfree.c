@@ -51,13 +51,21 @@
 typedef enum mf_kind { MF_MLS, MF_LME, MF_RK } mf_kind;
 
 /* Stencils of the points as of the last connect(), so that the several passes of a step evaluate
- * each point once: slot entries per point, the position they were computed at as the key. */
+ * each point once: slot entries per point, the position they were computed at as the key. LME also
+ * keeps each point's lambda, the start of its next Newton solve. */
 typedef struct mf_cache {
     size_t n, slot;    /* points, entries per point */
     int *len;          /* nodes per point; -1: not cached (evaluate afresh) */
-    double *key;       /* 2 per point */
+    double *key;       /* 2 per point (NAN: never evaluated) */
     int32_t *node;     /* slot per point */
     double *N, *dN;    /* slot, 2 slot per point */
+    double *lam;       /* LME: 2 per point, lambda at key (0, 0: none) */
+    /* candidate lists (cache_fill()): list_slot per point */
+    size_t list_slot;
+    int32_t *list;
+    int *list_len;     /* -1: none */
+    double *list_x;    /* 2 per point: where the list was made */
+    size_t list_build; /* the cloud's n_builds the lists belong to */
 } mf_cache;
 
 typedef struct mf_data {
@@ -67,6 +75,22 @@ typedef struct mf_data {
     int min_nodes, max_extra, tensor, smooth, axisym;
     mf_cache cache;
 } mf_data;
+
+/* The spline and w'(z) / z (finite at z = 0, where the radial gradient d w / d x = w'(z)/z * d / a^2
+ * is needed), inline for the weight loops; pm_cubic_spline() is the same polynomial. */
+static inline double spline_w(double z, double *dw_over_z)
+{
+    if (z < 0.5) {
+        *dw_over_z = -8.0 + 12.0 * z;
+        return 2.0 / 3.0 - 4.0 * z * z + 4.0 * z * z * z;
+    }
+    if (z < 1.0) {
+        *dw_over_z = (-4.0 + 8.0 * z - 4.0 * z * z) / z;
+        return 4.0 / 3.0 - 4.0 * z + 4.0 * z * z - 4.0 / 3.0 * z * z * z;
+    }
+    *dw_over_z = 0;
+    return 0;
+}
 
 double pm_cubic_spline(double z, double *dw)
 {
@@ -85,16 +109,6 @@ double pm_cubic_spline(double z, double *dw)
     return 0;
 }
 
-/* w'(z) / z, finite at z = 0 (where the radial gradient d w / d x = w'(z)/z * d / a^2 is needed) */
-static double spline_dw_over_z(double z)
-{
-    if (z < 0.5)
-        return -8.0 + 12.0 * z;
-    if (z < 1.0)
-        return (-4.0 + 8.0 * z - 4.0 * z * z) / z;
-    return 0;
-}
-
 static double norm1_3(const double A[3][3])
 {
     double m = 0;
@@ -107,17 +121,36 @@ int pm_linear_moment_shape(int n, const double (*d)[2], const double *w, const d
                            double *N, double (*dN)[2], double *cond)
 {
     const double iL = 1.0 / L;
-    double M[3][3] = {{0}}, Mk[2][3][3] = {{{0}}};
-    for (int i = 0; i < n; i++) {
-        const double h[3] = {1.0, d[i][0] * iL, d[i][1] * iL};
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) {
-                M[a][b] += w[i] * h[a] * h[b];
-                /* d(H H^T)/dx_k: H depends on x through d = x - x_I, dH/dx_k = e_(k+1) / L */
-                for (int k = 0; k < 2; k++)
-                    Mk[k][a][b] += dw[i][k] * h[a] * h[b] +
-                                   w[i] * iL * ((a == k + 1 ? h[b] : 0.0) + (b == k + 1 ? h[a] : 0.0));
-            }
+    /*
+     * M = sum w H H^T and, for its derivative, A_k = sum dw_k H H^T: six distinct entries each, as M
+     * is symmetric. H depends on x through d = x - x_I (dH/dx_k = e_(k+1) / L), so
+     * dM/dx_k = A_k + (e_(k+1) m^T + m e_(k+1)^T) / L with m = sum w H, the first column of M: the
+     * loop over the nodes needs only these 18 sums.
+     */
+    double s[3][6]; /* rows: w, dw_x, dw_y; columns: 00, 01, 02, 11, 12, 22 */
+    /* one pass per weight: 18 running sums in one loop do not fit the registers */
+    for (int r = 0; r < 3; r++) {
+        double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
+        for (int i = 0; i < n; i++) {
+            const double h1 = d[i][0] * iL, h2 = d[i][1] * iL, f = r ? dw[i][r - 1] : w[i];
+            const double f1 = f * h1, f2 = f * h2;
+            s0 += f;
+            s1 += f1;
+            s2 += f2;
+            s3 += f1 * h1;
+            s4 += f1 * h2;
+            s5 += f2 * h2;
+        }
+        s[r][0] = s0; s[r][1] = s1; s[r][2] = s2; s[r][3] = s3; s[r][4] = s4; s[r][5] = s5;
+    }
+    const double M[3][3] = {{s[0][0], s[0][1], s[0][2]}, {s[0][1], s[0][3], s[0][4]}, {s[0][2], s[0][4], s[0][5]}};
+    double Mk[2][3][3];
+    for (int k = 0; k < 2; k++) {
+        const double *a = s[k + 1];
+        const double A[3][3] = {{a[0], a[1], a[2]}, {a[1], a[3], a[4]}, {a[2], a[4], a[5]}};
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                Mk[k][r][c] = A[r][c] + iL * ((r == k + 1 ? M[c][0] : 0.0) + (c == k + 1 ? M[r][0] : 0.0));
     }
     /* symmetric 3 x 3 inverse by cofactors: M is small and its condition is checked below */
     double Mi[3][3];
@@ -149,49 +182,102 @@ int pm_linear_moment_shape(int n, const double (*d)[2], const double *w, const d
         for (int a = 0; a < 3; a++)
             db[k][a] = -(Mi[a][0] * t[0] + Mi[a][1] * t[1] + Mi[a][2] * t[2]);
     }
+    /* the basis terms over L folded into the coefficients: one multiply-add chain per output */
+    const double b1 = b[1] * iL, b2 = b[2] * iL;
+    const double e0[3] = {db[0][0] + b1, db[0][1] * iL, db[0][2] * iL};
+    const double e1[3] = {db[1][0] + b2, db[1][1] * iL, db[1][2] * iL};
     for (int i = 0; i < n; i++) {
-        const double h[3] = {1.0, d[i][0] * iL, d[i][1] * iL};
-        const double bh = b[0] + b[1] * h[1] + b[2] * h[2];
+        const double dx = d[i][0], dy = d[i][1];
+        const double bh = b[0] + b1 * dx + b2 * dy;
         N[i] = w[i] * bh;
-        for (int k = 0; k < 2; k++) {
-            const double dbh = db[k][0] + db[k][1] * h[1] + db[k][2] * h[2];
-            dN[i][k] = dw[i][k] * bh + w[i] * (dbh + b[k + 1] * iL);
-        }
+        dN[i][0] = dw[i][0] * bh + w[i] * (e0[0] + e0[1] * dx + e0[2] * dy);
+        dN[i][1] = dw[i][1] * bh + w[i] * (e1[0] + e1[1] * dx + e1[2] * dy);
     }
     return PM_OK;
 }
 
 /* ---- MLS and RK ---------------------------------------------------------------------------- */
 
-/* Weights of the nodes within the support of radius (half-side) a; drops the nodes of a tensor
- * query outside the square. Returns the number kept (compacted in idx). */
-static int moment_weights(const mf_data *md, const double x[2], double a, int nf, int32_t *idx, double (*d)[2],
+/*
+ * Radial weights w_I = W(|d_I| / a) and their gradients W'(z) / z d_I / a^2 for all n candidates,
+ * which the query found strictly inside the support. Both pieces of the spline (pm_cubic_spline()'s
+ * expressions) are evaluated for every node and blended with factors 0 and 1, t a + (1 - t) b,
+ * which is exactly a or b: a select (?:) would be kept a branch, as IEEE traps forbid computing both
+ * sides of it, while this loop vectorises; the square root and the division per node are most of
+ * its cost.
+ */
+static void radial_weights(int n, const double (*restrict d)[2], const double *restrict q, double a,
+                           double *restrict w, double (*restrict dw)[2])
+{
+    const double ia = 1.0 / a, ia2 = ia * ia;
+    double zs[PM_STENCIL_MAX];
+    for (int i = 0; i < n; i++) /* apart: sqrt() may set errno, which keeps a loop scalar */
+        zs[i] = sqrt(q[i]) * ia;
+    for (int i = 0; i < n; i++) {
+        const double z = zs[i];
+        const double t = z < 0.5, u = z < 1.0; /* inner piece; inside the support */
+        const double w_in = 2.0 / 3.0 - 4.0 * z * z + 4.0 * z * z * z;
+        const double w_out = 4.0 / 3.0 - 4.0 * z + 4.0 * z * z - 4.0 / 3.0 * z * z * z;
+        const double g_in = -8.0 + 12.0 * z;
+        const double g_out = (-4.0 + 8.0 * z - 4.0 * z * z) / (z + t * (1 - z)); /* no 1 / 0 at z = 0 */
+        const double g = (t * g_in + (u - t) * g_out) * ia2;
+        w[i] = t * w_in + (u - t) * w_out;
+        dw[i][0] = g * d[i][0];
+        dw[i][1] = g * d[i][1];
+    }
+}
+
+/*
+ * Weights of the candidates (offsets d, squared distances q, from the query) within the support of
+ * radius (half-side) a, compacted in place into idx and d (with w and dw); drops the nodes of a
+ * tensor query outside the square and nodes of zero weight (zero volume, or a distance that rounds
+ * to a). Returns the number kept.
+ */
+static int moment_weights(const mf_data *md, double a, int nf, int32_t *idx, double (*d)[2], const double *q,
                           double *w, double (*dw)[2])
 {
-    const pm_cloud *c = md->cloud;
-    const double ia = 1.0 / a, ia2 = ia * ia;
+    const double *vol = md->kind == MF_RK ? md->cloud->vol : NULL;
     int m = 0;
+    if (!md->tensor) {
+        radial_weights(nf, (const double (*)[2])d, q, a, w, dw);
+        if (vol)
+            for (int i = 0; i < nf; i++) {
+                const double v = vol[idx[i]];
+                w[i] *= v;
+                dw[i][0] *= v;
+                dw[i][1] *= v;
+            }
+        for (int i = 0; i < nf; i++) {
+            if (!(w[i] > 0))
+                continue;
+            if (m < i) {
+                idx[m] = idx[i];
+                d[m][0] = d[i][0];
+                d[m][1] = d[i][1];
+                w[m] = w[i];
+                dw[m][0] = dw[i][0];
+                dw[m][1] = dw[i][1];
+            }
+            m++;
+        }
+        return m;
+    }
+    const double ia = 1.0 / a, ia2 = ia * ia;
     for (int i = 0; i < nf; i++) {
         const int32_t j = idx[i];
-        const double dx = x[0] - c->x[2 * j], dy = x[1] - c->x[2 * j + 1];
-        const double v = md->kind == MF_RK ? c->vol[j] : 1.0;
-        if (md->tensor) {
-            const double zx = fabs(dx) * ia, zy = fabs(dy) * ia;
-            if (zx >= 1 || zy >= 1)
-                continue;
-            const double wx = pm_cubic_spline(zx, NULL), wy = pm_cubic_spline(zy, NULL);
-            w[m] = wx * wy * v;
-            dw[m][0] = spline_dw_over_z(zx) * dx * ia2 * wy * v;
-            dw[m][1] = spline_dw_over_z(zy) * dy * ia2 * wx * v;
-        } else {
-            const double z = sqrt(dx * dx + dy * dy) * ia;
-            w[m] = pm_cubic_spline(z, NULL) * v;
-            const double g = spline_dw_over_z(z) * ia2 * v;
-            dw[m][0] = g * dx;
-            dw[m][1] = g * dy;
-        }
-        if (!(w[m] > 0)) /* zero-volume node: no contribution */
+        const double dx = d[i][0], dy = d[i][1];
+        const double v = vol ? vol[j] : 1.0;
+        const double zx = fabs(dx) * ia, zy = fabs(dy) * ia;
+        if (zx >= 1 || zy >= 1)
             continue;
+        double gx, gy;
+        const double wx = spline_w(zx, &gx), wy = spline_w(zy, &gy);
+        const double wi = wx * wy * v;
+        if (!(wi > 0)) /* zero-volume node: no contribution */
+            continue;
+        w[m] = wi;
+        dw[m][0] = gx * dx * ia2 * wy * v;
+        dw[m][1] = gy * dy * ia2 * wx * v;
         d[m][0] = dx;
         d[m][1] = dy;
         idx[m++] = j;
@@ -199,36 +285,74 @@ static int moment_weights(const mf_data *md, const double x[2], double a, int nf
     return m;
 }
 
-static int moment_eval(const mf_data *md, const double x[2], pm_stencil *s)
+/* A point's candidate list: the nodes that were within some radius R_L of a nearby position (see
+ * cache_fill()). NULL where the cell list is to be searched instead. */
+typedef struct mf_list {
+    const int32_t *node;
+    int n;
+} mf_list;
+
+/* The nodes of a candidate list within r of x, with their offsets x - x_I and squared distances:
+ * what pm_cloud_gather() gives, in the same order (the list is a cell-list query of the same build),
+ * without visiting cells or testing the nodes outside R_L. */
+static int list_gather(const pm_cloud *c, const mf_list *L, const double x[2], double r, int32_t *restrict idx,
+                       double (*restrict d)[2], double *restrict q)
+{
+    const double r2 = r * r, x0 = x[0], x1 = x[1];
+    const double *restrict xc = c->x;
+    int n = 0;
+    for (int k = 0; k < L->n; k++) {
+        const int32_t j = L->node[k];
+        const double dx = x0 - xc[2 * (size_t)j], dy = x1 - xc[2 * (size_t)j + 1];
+        const double qq = dx * dx + dy * dy;
+        idx[n] = j;
+        d[n][0] = dx;
+        d[n][1] = dy;
+        q[n] = qq;
+        n += qq < r2;
+    }
+    return n;
+}
+
+/* The query radius of the first (not grown) support: the tensor kernel's square of half-side r0
+ * lies within the circle of radius r0 sqrt 2. */
+static double first_radius(const mf_data *md)
+{
+    return md->tensor ? md->r0 * sqrt(2.0) : md->r0;
+}
+
+static int moment_eval(const mf_data *md, const double x[2], const mf_list *L, pm_stencil *s)
 {
     int32_t idx[MF_CAND_MAX];
-    double d[PM_STENCIL_MAX][2], w[PM_STENCIL_MAX], dw[PM_STENCIL_MAX][2];
+    double d[MF_CAND_MAX][2], q[MF_CAND_MAX], w[PM_STENCIL_MAX], dw[PM_STENCIL_MAX][2];
     double a = md->r0, cond = INFINITY;
     int m = 0;
     for (int step = 0; step < MF_MAX_GROWTH; step++, a *= md->growth) {
-        int nf;
         /* the square of half-side a lies within the circle of radius a sqrt 2 */
-        pm_check(pm_cloud_query(md->cloud, x, md->tensor ? a * sqrt(2.0) : a, MF_CAND_MAX, idx, NULL, &nf));
+        int nf = step == 0 && L ? list_gather(md->cloud, L, x, first_radius(md), idx, d, q)
+                                : pm_cloud_gather(md->cloud, x, md->tensor ? a * sqrt(2.0) : a, MF_CAND_MAX, idx, d, q);
         if (nf > MF_CAND_MAX)
             return pm_error_set(PM_ESIM, "%d nodes within %g of (%g, %g): support_radius is far too large", nf, a,
                                 x[0], x[1]);
         if (md->tensor) { /* count those in the square before weighing (the buffers hold 64) */
             int in = 0;
-            for (int i = 0; i < nf; i++) {
-                const int32_t j = idx[i];
-                if (fabs(x[0] - md->cloud->x[2 * j]) < a && fabs(x[1] - md->cloud->x[2 * j + 1]) < a)
-                    idx[in++] = j;
-            }
+            for (int i = 0; i < nf; i++)
+                if (fabs(d[i][0]) < a && fabs(d[i][1]) < a) {
+                    idx[in] = idx[i];
+                    d[in][0] = d[i][0];
+                    d[in][1] = d[i][1];
+                    in++;
+                }
             nf = in;
         }
+        const int all_in = (size_t)nf == md->cloud->n;
         if (nf > PM_STENCIL_MAX)
             return pm_error_set(PM_ESIM,
                                 "%d nodes within the support %g of (%g, %g), at most %d fit a stencil: "
                                 "reduce support_radius",
                                 nf, a, x[0], x[1], PM_STENCIL_MAX);
-        const int all_in = (size_t)nf == md->cloud->n;
         if (nf >= md->min_nodes) {
-            m = moment_weights(md, x, a, nf, idx, d, w, dw);
+            m = moment_weights(md, a, nf, idx, d, q, w, dw);
             if (m >= 3 && pm_linear_moment_shape(m, (const double (*)[2])d, w, (const double (*)[2])dw, a, s->N,
                                                  s->dN, &cond) == PM_OK &&
                 cond <= md->cond_tol) {
@@ -249,44 +373,69 @@ static int moment_eval(const mf_data *md, const double x[2], pm_stencil *s)
 
 /* ---- LME ----------------------------------------------------------------------------------- */
 
-/* Is x strictly inside the convex hull of the nodes at offsets d = x - x_I? Fast sufficient test:
- * a node in each open quadrant around x (then every direction has a node strictly ahead). Exact
- * test otherwise: the largest angular gap between node directions is below pi. */
+/* Monotone in the angle of (u, v) on [0, 2 pi), with values in [0, 4): sorts directions as atan2
+ * would, at the cost of one division. */
+static inline double pseudo_angle(double u, double v)
+{
+    if (v >= 0)
+        return u >= 0 ? v / (u + v) : 1 - u / (v - u);
+    return u < 0 ? 2 - v / (-u - v) : 3 + u / (u - v);
+}
+
+/*
+ * Is x strictly inside the convex hull of the nodes at offsets d = x - x_I? Fast sufficient tests
+ * first: a node in each open quadrant around x (then every direction has a node strictly ahead)
+ * says yes; no node strictly left of x, or right, below or above it (x on or beyond the hull, as
+ * at a node on a straight side of the cloud, evaluated there every step) says no. Otherwise the
+ * exact test without atan2(): the
+ * largest angular gap between successive node directions is below pi, i.e. below pi (1 - 1e-12),
+ * since a gap of pi within round-off means x is on an edge of the hull, where lambda diverges.
+ * Successive directions a, b (by angle) have a gap below that when a x b > sin(1e-12 pi) |a| |b|,
+ * or, for gaps below pi / 2, when a . b > 0; there a x b may come out a hair negative where two
+ * directions agree to round-off and their order did not (harmless: a set of directions that spans
+ * no more than pi / 2 has an empty axis half-plane, so no true gap near 2 pi gets this far).
+ */
 static int inside_hull(int n, const double (*d)[2])
 {
     int q = 0;
-    for (int i = 0; i < n; i++) {
-        const double u = -d[i][0], v = -d[i][1];
-        if (u > 0 && v > 0)
-            q |= 1;
-        else if (u < 0 && v > 0)
-            q |= 2;
-        else if (u < 0 && v < 0)
-            q |= 4;
-        else if (u > 0 && v < 0)
-            q |= 8;
+    for (int i = 0; i < n; i++) { /* u = -d_x > 0 etc.; & and | so that the loop has no branches */
+        const int ur = d[i][0] < 0, ul = d[i][0] > 0, va = d[i][1] < 0, vb = d[i][1] > 0;
+        q |= (ur & va) | (ul & va) << 1 | (ul & vb) << 2 | (ur & vb) << 3;
     }
     if (q == 15)
         return 1;
-    double ang[PM_STENCIL_MAX];
-    int k = 0;
+    int h = 0;
     for (int i = 0; i < n; i++)
+        h |= (d[i][0] < 0) | (d[i][0] > 0) << 1 | (d[i][1] < 0) << 2 | (d[i][1] > 0) << 3;
+    if (h != 15)
+        return 0;
+    double ang[PM_STENCIL_MAX], dir[PM_STENCIL_MAX][2];
+    int k = 0;
+    for (int i = 0; i < n && i < PM_STENCIL_MAX; i++)
         if (d[i][0] != 0 || d[i][1] != 0) {
-            const double t = atan2(-d[i][1], -d[i][0]);
+            const double u = -d[i][0], v = -d[i][1], t = pseudo_angle(u, v);
             int j = k++;
             while (j > 0 && ang[j - 1] > t) {
                 ang[j] = ang[j - 1];
+                dir[j][0] = dir[j - 1][0];
+                dir[j][1] = dir[j - 1][1];
                 j--;
             }
             ang[j] = t;
+            dir[j][0] = u;
+            dir[j][1] = v;
         }
     if (k < 3)
         return 0;
-    double gap = ang[0] + 2 * M_PI - ang[k - 1];
-    for (int i = 1; i < k; i++)
-        gap = fmax(gap, ang[i] - ang[i - 1]);
-    /* a gap of pi within round-off means x is on an edge of the hull: lambda diverges there */
-    return gap < M_PI * (1 - 1e-12);
+    const double s_tol = sin(1e-12 * M_PI);
+    for (int i = 0; i < k; i++) {
+        const double *a = dir[i == 0 ? k - 1 : i - 1], *b = dir[i];
+        const double cr = a[0] * b[1] - a[1] * b[0], dt = a[0] * b[0] + a[1] * b[1];
+        const double ab = sqrt((a[0] * a[0] + a[1] * a[1]) * (b[0] * b[0] + b[1] * b[1]));
+        if (!(cr > s_tol * ab || (dt > 0 && cr > -s_tol * ab)))
+            return 0;
+    }
+    return 1;
 }
 
 /*
@@ -294,13 +443,13 @@ static int inside_hull(int n, const double (*d)[2])
  * final Newton residual (|r| <= 1e-14 h), and J = sum N_I (d_I - r)(d_I - r)^T. Identical at
  * convergence; but then sum grad N_I = -J^-1 sum N_I (d_I - r) = 0 and
  * sum grad N_I x_I^T = J^-1 sum N_I (d_I - r) d_I^T = I hold to round-off even next to the hull,
- * where J is nearly singular and the eq. 39 form would amplify r by 1 / lambda_min(J).
+ * where J is nearly singular and the eq. 39 form would amplify r by 1 / lambda_min(J). r and J are
+ * those the Newton solve formed last, at N (pm_lme_newton()).
  * Returns the condition number of J (seed 000 section 5.3), INFINITY when J is singular.
  */
-static double lme_gradients(int n, const double (*d)[2], const double *N, double (*dN)[2])
+static double lme_gradients(int n, const double (*d)[2], const double *N, const double r[2], const double J[3],
+                            double (*dN)[2])
 {
-    double r[2], J[3];
-    pm_lme_resid_hess(n, d, N, r, J);
     const double det = J[0] * J[2] - J[1] * J[1];
     if (!(det > 0))
         return INFINITY;
@@ -315,25 +464,87 @@ static double lme_gradients(int n, const double (*d)[2], const double *N, double
     return lo > 0 ? hi / lo : INFINITY;
 }
 
-static int lme_cloud_eval(const mf_data *md, const double x[2], pm_stencil *s)
+/* Nearer by distance, ties by node index: the order that picks "the k nearest" uniquely. */
+static inline int nearer(const int32_t *idx, const double *d2, int a, int b)
+{
+    return d2[a] < d2[b] || (d2[a] == d2[b] && idx[a] < idx[b]);
+}
+
+static inline void swap_entry(int32_t *idx, double (*d)[2], double *d2, int a, int b)
+{
+    const int32_t ti = idx[a];
+    const double t0 = d[a][0], t1 = d[a][1], tq = d2[a];
+    idx[a] = idx[b]; d[a][0] = d[b][0]; d[a][1] = d[b][1]; d2[a] = d2[b];
+    idx[b] = ti; d[b][0] = t0; d[b][1] = t1; d2[b] = tq;
+}
+
+/* Moves the nearest of entries from..n-1 to position from. */
+static void bring_nearest(int from, int n, int32_t *idx, double (*d)[2], double *d2)
+{
+    int k = from;
+    for (int j = from + 1; j < n; j++)
+        if (nearer(idx, d2, j, k))
+            k = j;
+    swap_entry(idx, d, d2, from, k);
+}
+
+/* Moves the k nearest of the n entries to the front, in no particular order (quickselect: linear
+ * on average, where picking them one by one costs k n). */
+static void select_nearest(int k, int n, int32_t *idx, double (*d)[2], double *d2)
+{
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {
+        swap_entry(idx, d, d2, (lo + hi) / 2, hi); /* the middle entry as pivot, parked at hi */
+        int store = lo;
+        for (int i = lo; i < hi; i++)
+            if (nearer(idx, d2, i, hi))
+                swap_entry(idx, d, d2, i, store++);
+        swap_entry(idx, d, d2, store, hi); /* entries before store are nearer than the pivot */
+        if (store == k - 1 || store == k)
+            return;
+        if (store < k)
+            lo = store + 1;
+        else
+            hi = store - 1;
+    }
+}
+
+/* Newton from lam; a start that fails (warm, next to the hull) is retried from lambda = 0. */
+static int lme_newton_retry(int n, const double (*d)[2], double beta, double tol, double lam[2], double *N,
+                            double r[2], double J[3])
+{
+    const int warm = lam[0] != 0 || lam[1] != 0;
+    int it = pm_lme_newton(n, d, beta, tol, lam, N, r, J);
+    if (it < 0 && warm) {
+        lam[0] = lam[1] = 0;
+        it = pm_lme_newton(n, d, beta, tol, lam, N, r, J);
+    }
+    return it;
+}
+
+/*
+ * LME at x. lam: in, the starting lambda (0, 0 for none; from the lambda of a point that moved
+ * little since, the Newton steps are small enough to be taken without exponentials, see
+ * pm_lme_newton()); out, the solution. The stencil is the support's nodes in the order the query found them
+ * (the 64 nearest, nearest first, when more), then any added ones nearest first: the node set
+ * is what decides the functions, its order only the round-off of the sums.
+ */
+static int lme_cloud_eval(const mf_data *md, const double x[2], double lam[2], const mf_list *L, pm_stencil *s)
 {
     const pm_cloud *c = md->cloud;
     int32_t idx[MF_CAND_MAX];
-    double d2[MF_CAND_MAX], d[PM_STENCIL_MAX][2];
+    double d2[MF_CAND_MAX], d[MF_CAND_MAX][2];
     double R = md->r0;
     int nf = 0, m = 0, found = 0;
     /* grow the search until the nearest (at most 64) nodes enclose x */
     for (int step = 0; step < MF_MAX_GROWTH && !found; step++) {
-        pm_check(pm_cloud_query(c, x, R, MF_CAND_MAX, idx, d2, &nf));
+        nf = step == 0 && L ? list_gather(c, L, x, R, idx, d, d2) : pm_cloud_gather(c, x, R, MF_CAND_MAX, idx, d, d2);
         if (nf > MF_CAND_MAX)
             return pm_error_set(PM_ESIM, "lme: %d nodes within %g of (%g, %g): support_radius is far too large", nf,
                                 R, x[0], x[1]);
-        pm_cloud_sort_by_distance(nf, idx, d2);
         m = nf < PM_STENCIL_MAX ? nf : PM_STENCIL_MAX;
-        for (int i = 0; i < m; i++) {
-            d[i][0] = x[0] - c->x[2 * idx[i]];
-            d[i][1] = x[1] - c->x[2 * idx[i] + 1];
-        }
+        if (nf > PM_STENCIL_MAX)
+            select_nearest(m, nf, idx, d, d2);
         if (m >= md->min_nodes && inside_hull(m, (const double (*)[2])d)) {
             found = 1;
             break;
@@ -348,38 +559,44 @@ static int lme_cloud_eval(const mf_data *md, const double x[2], pm_stencil *s)
                             "node cloud?)",
                             x[0], x[1], m);
     const double tol = PM_LME_TOL * c->h;
-    double lam[2] = {0, 0};
-    if (pm_lme_solve(m, (const double (*)[2])d, md->beta, tol, lam, s->N, s->dN) < 0)
+    double r[2], J[3];
+    if (lme_newton_retry(m, (const double (*)[2])d, md->beta, tol, lam, s->N, r, J) < 0)
         return pm_error_set(PM_ESIM, "lme: the Newton solve for lambda did not converge at (%g, %g)", x[0], x[1]);
-    double kappa = lme_gradients(m, (const double (*)[2])d, s->N, s->dN);
+    double kappa = lme_gradients(m, (const double (*)[2])d, s->N, r, J, s->dN);
     /* seed 000 section 5.3: while J is ill-conditioned, add the next-nearest node */
     for (int extra = 0; kappa > md->cond_tol && extra < md->max_extra && m < PM_STENCIL_MAX; extra++) {
-        while (m == nf && (size_t)nf < c->n) { /* every node within R is in: look further */
+        while (m == nf && (size_t)nf < c->n) {
+            /* every node within R is in: look further, and keep only the nodes beyond R (the
+             * query computes the same squared distances, so the test is exact) */
+            const double r2_in = R * R;
             R *= md->growth;
-            pm_check(pm_cloud_query(c, x, R, MF_CAND_MAX, idx, d2, &nf));
-            if (nf > MF_CAND_MAX) { /* an unordered subset: stop adding rather than add a wrong node */
+            const int got = pm_cloud_gather(c, x, R, MF_CAND_MAX - m, idx + m, d + m, d2 + m);
+            if (got > MF_CAND_MAX - m) { /* an unordered subset: stop adding rather than add a wrong node */
                 nf = m;
                 break;
             }
-            pm_cloud_sort_by_distance(nf, idx, d2);
+            nf = m;
+            for (int i = m; i < m + got; i++)
+                if (!(d2[i] < r2_in)) {
+                    idx[nf] = idx[i];
+                    d[nf][0] = d[i][0];
+                    d[nf][1] = d[i][1];
+                    d2[nf++] = d2[i];
+                }
         }
         if (m == nf)
             break;
-        d[m][0] = x[0] - c->x[2 * idx[m]];
-        d[m][1] = x[1] - c->x[2 * idx[m] + 1];
-        double N2[PM_STENCIL_MAX], dN2[PM_STENCIL_MAX][2], lam2[2] = {lam[0], lam[1]};
+        bring_nearest(m, nf, idx, d, d2);
+        double N2[PM_STENCIL_MAX], lam2[2] = {lam[0], lam[1]};
         /* warm start from the m-node lambda; next to the hull that lambda is large and can put the
          * new node's weight far off, so a failure retries from lambda = 0 */
-        if (pm_lme_solve(m + 1, (const double (*)[2])d, md->beta, tol, lam2, N2, dN2) < 0) {
-            lam2[0] = lam2[1] = 0;
-            if (pm_lme_solve(m + 1, (const double (*)[2])d, md->beta, tol, lam2, N2, dN2) < 0)
-                break; /* keep the converged solution with m nodes */
-        }
+        if (lme_newton_retry(m + 1, (const double (*)[2])d, md->beta, tol, lam2, N2, r, J) < 0)
+            break; /* keep the converged solution with m nodes */
         m++;
         lam[0] = lam2[0];
         lam[1] = lam2[1];
         memcpy(s->N, N2, (size_t)m * sizeof *N2);
-        kappa = lme_gradients(m, (const double (*)[2])d, s->N, s->dN);
+        kappa = lme_gradients(m, (const double (*)[2])d, s->N, r, J, s->dN);
     }
     if (isinf(kappa))
         return pm_error_set(PM_ESIM, "lme: singular Hessian at (%g, %g) with %d nodes", x[0], x[1], m);
@@ -397,24 +614,67 @@ static void cache_free(mf_cache *c)
     free(c->node);
     free(c->N);
     free(c->dN);
+    free(c->lam);
+    free(c->list);
+    free(c->list_len);
+    free(c->list_x);
     memset(c, 0, sizeof *c);
 }
 
-static int cache_alloc(mf_cache *c, size_t n, size_t slot)
+/* Margin of the candidate lists: a list made at x_L with radius R_L = r + 2 skin + delta holds every
+ * node within r of any x with |x - x_L| <= delta as long as the cell list was not rebuilt, since
+ * every node then moved at most 2 skin since the list was made (skin each side of its build). */
+static double list_delta(const pm_cloud *c)
+{
+    return c->skin;
+}
+
+static double list_radius(const mf_data *md)
+{
+    return first_radius(md) + 2 * md->cloud->skin + list_delta(md->cloud);
+}
+
+static int cache_alloc(mf_cache *c, const mf_data *md, size_t n, size_t slot)
 {
     cache_free(c);
-    c->len = malloc((n ? n : 1) * sizeof *c->len);
-    c->key = malloc(2 * (n ? n : 1) * sizeof *c->key);
-    c->node = malloc((n ? n : 1) * slot * sizeof *c->node);
-    c->N = malloc((n ? n : 1) * slot * sizeof *c->N);
-    c->dN = malloc(2 * (n ? n : 1) * slot * sizeof *c->dN);
-    if (!c->len || !c->key || !c->node || !c->N || !c->dN) {
+    const size_t n1 = n ? n : 1;
+    /* room for 1.5 times the nodes of a list's disc in a cloud of spacing h (a denser spot makes
+     * lists that do not fit: those points search the cell list) */
+    const double rl = list_radius(md) / md->cloud->h;
+    const double want = 1.5 * M_PI * rl * rl + 8;
+    c->list_slot = want < 16 ? 16 : want > MF_CAND_MAX ? MF_CAND_MAX : (size_t)want;
+    c->len = malloc(n1 * sizeof *c->len);
+    c->key = malloc(2 * n1 * sizeof *c->key);
+    c->node = malloc(n1 * slot * sizeof *c->node);
+    c->N = malloc(n1 * slot * sizeof *c->N);
+    c->dN = malloc(2 * n1 * slot * sizeof *c->dN);
+    c->lam = calloc(2 * n1, sizeof *c->lam);
+    c->list = malloc(n1 * c->list_slot * sizeof *c->list);
+    c->list_len = malloc(n1 * sizeof *c->list_len);
+    c->list_x = malloc(2 * n1 * sizeof *c->list_x);
+    if (!c->len || !c->key || !c->node || !c->N || !c->dN || !c->lam || !c->list || !c->list_len || !c->list_x) {
         cache_free(c);
         return pm_error_set(PM_ENOMEM, "out of memory for %zu meshfree stencils", n);
     }
+    for (size_t i = 0; i < 2 * n; i++)
+        c->key[i] = NAN;
+    for (size_t i = 0; i < n; i++)
+        c->list_len[i] = -1;
+    c->list_build = md->cloud->n_builds;
     c->n = n;
     c->slot = slot;
     return PM_OK;
+}
+
+/* pm_meshfree_eval() for a known meshfree kind; lam as for lme_cloud_eval() (LME only), L a
+ * candidate list for the first support or NULL. */
+static int point_eval(const mf_data *md, const char *name, const double x[2], double lam[2], const mf_list *L,
+                      pm_stencil *s)
+{
+    s->n = 0;
+    if (!isfinite(x[0]) || !isfinite(x[1]))
+        return pm_error_set(PM_ESIM, "%s: non-finite point (%g, %g)", name, x[0], x[1]);
+    return md->kind == MF_LME ? lme_cloud_eval(md, x, lam, L, s) : moment_eval(md, x, L, s);
 }
 
 /*
@@ -466,9 +726,17 @@ static int smoothed_eval(const pm_approx *a, const double x[2], double half, pm_
  * uncached and reports its length, so that the caller can widen the slot and try again. */
 static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longest)
 {
-    const mf_data *md = a->data;
-    const mf_cache *c = &md->cache;
+    mf_data *md = a->data;
+    mf_cache *c = &md->cache;
     const int axisym = md->axisym;
+    const double h_warm = md->cloud->h;
+    /* candidate lists hold while the cell list they were made from does */
+    if (c->list_build != md->cloud->n_builds) {
+        for (size_t i = 0; i < c->n; i++)
+            c->list_len[i] = -1;
+        c->list_build = md->cloud->n_builds;
+    }
+    const double list_r = list_radius(md), delta2 = list_delta(md->cloud) * list_delta(md->cloud);
     long first_bad = LONG_MAX;
     int most = 0;
 #pragma omp parallel for schedule(dynamic, 256) num_threads(a->n_threads) reduction(min : first_bad) \
@@ -476,13 +744,38 @@ static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longe
     for (size_t i = 0; i < p->n; i++) {
         pm_stencil st;
         const double *x = p->x + 2 * i;
+        /* LME: start Newton from this slot's last lambda if the point it belongs to was near x (the
+         * periodic sort of the particles may have given the slot to another one far away) */
+        double *lam = c->lam + 2 * i;
+        if (!(fabs(x[0] - c->key[2 * i]) + fabs(x[1] - c->key[2 * i + 1]) < h_warm))
+            lam[0] = lam[1] = 0;
         c->len[i] = -1;
         c->key[2 * i] = x[0];
         c->key[2 * i + 1] = x[1];
         /* the cell of a point: its area (per radian in axisymmetric runs the volume is r times it) */
         const double area = p->vol && p->vol[i] > 0 ? p->vol[i] / (axisym && x[0] > 0 ? x[0] : 1.0) : 0.0;
-        const int rc = md->smooth && area > 0 ? smoothed_eval(a, x, 0.5 * sqrt(area), &st)
-                                              : pm_meshfree_eval(a, x, &st);
+        int rc;
+        if (md->smooth && area > 0)
+            rc = smoothed_eval(a, x, 0.5 * sqrt(area), &st);
+        else {
+            /* the first support's nodes from the point's candidate list, made anew when the point
+             * has moved more than delta from where the list was made (or took another's slot) */
+            int32_t *list = c->list + i * c->list_slot;
+            double *xl = c->list_x + 2 * i;
+            const double lx = x[0] - xl[0], ly = x[1] - xl[1];
+            if (c->list_len[i] < 0 || !(lx * lx + ly * ly <= delta2)) {
+                const int nl = isfinite(x[0]) && isfinite(x[1])
+                                   ? pm_cloud_gather(md->cloud, x, list_r, (int)c->list_slot, list, NULL, NULL)
+                                   : INT_MAX;
+                c->list_len[i] = nl <= (int)c->list_slot ? nl : -1;
+                xl[0] = x[0];
+                xl[1] = x[1];
+            }
+            const mf_list L = {list, c->list_len[i]};
+            rc = point_eval(md, a->ops->name, x, lam, c->list_len[i] >= 0 ? &L : NULL, &st);
+        }
+        if (rc != PM_OK)
+            lam[0] = lam[1] = 0;
         if (rc != PM_OK) {
             first_bad = (long)i < first_bad ? (long)i : first_bad;
             continue;
@@ -510,12 +803,12 @@ static int mf_connect(pm_approx *a, pm_particles *p)
     if (!p || p->n == 0)
         return PM_OK;
     if (md->cache.n != p->n || md->cache.slot == 0)
-        pm_check(cache_alloc(&md->cache, p->n, md->cache.slot ? md->cache.slot : 24));
+        pm_check(cache_alloc(&md->cache, md, p->n, md->cache.slot ? md->cache.slot : 24));
     long bad;
     int longest;
     pm_check(cache_fill(a, p, &bad, &longest));
     if (bad == LONG_MAX && (size_t)longest > md->cache.slot) {
-        pm_check(cache_alloc(&md->cache, p->n, (size_t)longest + 4));
+        pm_check(cache_alloc(&md->cache, md, p->n, (size_t)longest + 4));
         pm_check(cache_fill(a, p, &bad, &longest));
     }
     if (bad != LONG_MAX) {
@@ -577,11 +870,8 @@ int pm_meshfree_eval(const pm_approx *a, const double x[2], pm_stencil *s)
     if (!pm_approx_is_meshfree(a))
         return pm_error_set(PM_EINPUT, "pm_meshfree_eval: '%s' is not a meshfree approximation",
                             a ? a->ops->name : "(null)");
-    const mf_data *md = a->data;
-    s->n = 0;
-    if (!isfinite(x[0]) || !isfinite(x[1]))
-        return pm_error_set(PM_ESIM, "%s: non-finite point (%g, %g)", a->ops->name, x[0], x[1]);
-    return md->kind == MF_LME ? lme_cloud_eval(md, x, s) : moment_eval(md, x, s);
+    double lam[2] = {0, 0};
+    return point_eval(a->data, a->ops->name, x, lam, NULL, s);
 }
 
 pm_meshfree_opts pm_meshfree_opts_default(void)
