@@ -165,6 +165,17 @@ void pm_sim_gravity(const pm_sim *s, double t, double g[2]);
  */
 void pm_sim_energy(const pm_sim *s, double *kinetic, double *strain, double *gravity);
 
+/** What a run reached, also when it stopped on an error (for callers that judge runs, such as the
+ *  strength reduction). */
+typedef struct pm_run_stats {
+    double t;                /**< time reached: the end time, or the last completed step's */
+    long steps;              /**< steps completed */
+    long newton_iterations;  /**< implicit: Newton iterations of all steps */
+    long step_cuts;          /**< implicit: halvings of steps that did not converge */
+    double max_displacement; /**< largest particle displacement |x - x0| at time t */
+    double wall_seconds;     /**< the whole run */
+} pm_run_stats;
+
 /** Options of a whole run. */
 typedef struct pm_run_opts {
     const char *out_dir;   /**< output directory (NULL: the case's) */
@@ -172,10 +183,13 @@ typedef struct pm_run_opts {
     int threads;           /**< OpenMP threads (0: OMP_NUM_THREADS or all cores) */
     int write_output;      /**< 0: write no files (tests) */
     int verbose;           /**< implicit runs: Newton iterations also on stderr when no files are written */
+    pm_run_stats *stats;   /**< if not NULL, receives what the run reached (also when it fails) */
 } pm_run_opts;
 
 /**
- * @brief Run a case to its end time, writing all outputs.
+ * @brief Run a case to its end time, writing all outputs. An implicit or quasi-static run that stops
+ *        because Newton does not converge writes its last converged state as a final frame, so the
+ *        mechanism that stopped it can be seen.
  * @param c loaded case
  * @param o options
  * @param out_sim if not NULL, receives the final simulation (caller destroys), for tests

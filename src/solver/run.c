@@ -144,6 +144,16 @@ static int write_energy(pm_output *out, const pm_sim *s)
     return pm_output_energy(out, s->t, ke, se, ge);
 }
 
+static double max_displacement(const pm_particles *p)
+{
+    double m2 = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        const double dx = p->x[2 * i] - p->x0[2 * i], dy = p->x[2 * i + 1] - p->x0[2 * i + 1];
+        m2 = fmax(m2, dx * dx + dy * dy);
+    }
+    return sqrt(m2);
+}
+
 int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
 {
     const double wall0 = pm_wall_seconds();
@@ -224,6 +234,23 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         rc = write_frame(out, s, dir, &frame);
         if (!rc)
             rc = write_energy(out, s);
+    } else if (rc == PM_ESIM && out && c->analysis.type != PM_ANALYSIS_EXPLICIT && last_frame_t < s->t) {
+        /* A failed implicit step restores the start-of-step state, the last equilibrium found: worth a
+         * frame, since it shows the mechanism that stopped the run. The error stays the run's result. */
+        char msg[2048];
+        snprintf(msg, sizeof msg, "%s", pm_error_message());
+        if (write_frame(out, s, dir, &frame) == PM_OK)
+            write_energy(out, s);
+        pm_error_set(rc, "%s", msg);
+    }
+    if (o->stats) {
+        pm_run_stats *st = o->stats;
+        st->t = s->t;
+        st->steps = s->step;
+        st->newton_iterations = imf.total.iterations;
+        st->step_cuts = imf.total.step_cuts;
+        st->max_displacement = max_displacement(&s->p);
+        st->wall_seconds = pm_wall_seconds() - wall0;
     }
     pm_progress_end(&pg, s->step, s->t);
     close_implicit_files(&imf);
