@@ -5,10 +5,11 @@
  *
  * These kinds work on a pm_cloud, not on a pm_grid, so they are not in the pm_approx_create()
  * registry: create them with pm_approx_create_cloud(). The result is an ordinary pm_approx (its
- * grid is NULL): connect() refreshes the cloud's cell list (pm_cloud_update()) and eval() fills a
- * pm_stencil whose node indices are cloud node indices. Each evaluation searches the neighbours
- * itself (no per-point connectivity is stored) and allocates nothing, so evaluations may run in
- * parallel while the cloud does not change.
+ * grid is NULL): connect() refreshes the cloud's cell list (pm_cloud_update()) and evaluates every
+ * material point once (eval() then returns the kept stencil), keeping per point a list of nearby
+ * nodes for the next neighbour search and, for lme, the last lambda as the next Newton start.
+ * pm_meshfree_eval() is stateless: it searches the cell list and allocates nothing, so evaluations
+ * may run in parallel while the cloud does not change.
  *
  * All three use a linear basis. Formulas, defaults and their sources: docs/meshfree.md.
  */
@@ -89,6 +90,20 @@ double pm_meshfree_radius(const pm_approx *a);
  *         (LME), or the moment matrix stays ill-conditioned; PM_EINPUT for another kind
  */
 int pm_meshfree_eval(const pm_approx *a, const double x[2], pm_stencil *s);
+
+/**
+ * @brief pm_meshfree_eval() at the current position of cloud node @p node, cheaper when called for
+ *        the same nodes step after step (a solver moving its nodes with the interpolated field): each
+ *        node keeps a list of the nodes around it for the neighbour search and, for lme, the lambda
+ *        of its last solve as the start of the next. Same functions as pm_meshfree_eval() to
+ *        round-off. Calls for distinct nodes may run in parallel; after moving nodes, call
+ *        pm_cloud_update() (or connect()) first, as for any query.
+ * @param a an approximation from pm_approx_create_cloud()
+ * @param node a node index of its cloud
+ * @param s receives nodes, N and dN/dx
+ * @return as pm_meshfree_eval(); PM_EINPUT also for a node index out of range
+ */
+int pm_meshfree_eval_node(const pm_approx *a, size_t node, pm_stencil *s);
 
 /**
  * @brief The cubic spline of seed 002 eq. 40: 2/3 - 4z^2 + 4z^3 on [0, 1/2],

@@ -58,12 +58,13 @@ int pm_kd_update(pm_kd *kd, const pm_approx *a)
     for (size_t j = 0; j < kd->nb; j++) {
         pm_stencil s;
         const int32_t J = kd->node[j];
-        double x[2] = {c->x[2 * (size_t)J], c->x[2 * (size_t)J + 1]};
+        int rc;
         if (kd->offset) {
-            x[0] += kd->offset[2 * j];
-            x[1] += kd->offset[2 * j + 1];
-        }
-        int rc = pm_meshfree_eval(a, x, &s);
+            const double x[2] = {c->x[2 * (size_t)J] + kd->offset[2 * j],
+                                 c->x[2 * (size_t)J + 1] + kd->offset[2 * j + 1]};
+            rc = pm_meshfree_eval(a, x, &s);
+        } else /* rows are re-evaluated every step at the same nodes: the node's own search state pays */
+            rc = pm_meshfree_eval_node(a, (size_t)J, &s);
         if (rc)
             return pm_error_prefix(rc, "Kronecker transformation at boundary node %d: ", (int)J);
         kd->rowlen[j] = s.n;

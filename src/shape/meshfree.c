@@ -50,6 +50,17 @@
 
 typedef enum mf_kind { MF_MLS, MF_LME, MF_RK } mf_kind;
 
+/* Candidate lists, one per point that is evaluated again and again (the solver's material points,
+ * the cloud's nodes): the nodes near where the list was made, which answer the point's first query
+ * while they are sure to hold every node of its support (lists_get()). */
+typedef struct mf_lists {
+    size_t n, slot;    /* lists, entries per list */
+    int32_t *node;     /* slot per list */
+    int *len;          /* -1: none */
+    double *x;         /* 2 per list: where it was made */
+    size_t *build;     /* the cloud's n_builds when it was made */
+} mf_lists;
+
 /* Stencils of the points as of the last connect(), so that the several passes of a step evaluate
  * each point once: slot entries per point, the position they were computed at as the key. LME also
  * keeps each point's lambda, the start of its next Newton solve. */
@@ -60,12 +71,7 @@ typedef struct mf_cache {
     int32_t *node;     /* slot per point */
     double *N, *dN;    /* slot, 2 slot per point */
     double *lam;       /* LME: 2 per point, lambda at key (0, 0: none) */
-    /* candidate lists (cache_fill()): list_slot per point */
-    size_t list_slot;
-    int32_t *list;
-    int *list_len;     /* -1: none */
-    double *list_x;    /* 2 per point: where the list was made */
-    size_t list_build; /* the cloud's n_builds the lists belong to */
+    mf_lists lists;    /* one per point */
 } mf_cache;
 
 typedef struct mf_data {
@@ -74,6 +80,9 @@ typedef struct mf_data {
     double r0, growth, cond_tol, gamma, beta;
     int min_nodes, max_extra, tensor, smooth, axisym;
     mf_cache cache;
+    /* pm_meshfree_eval_node(): per cloud node, its candidate list and (LME) last lambda */
+    mf_lists node_lists;
+    double *node_lam;
 } mf_data;
 
 /* The spline and w'(z) / z (finite at z = 0, where the radial gradient d w / d x = w'(z)/z * d / a^2
@@ -560,9 +569,21 @@ static int lme_cloud_eval(const mf_data *md, const double x[2], double lam[2], c
                             x[0], x[1], m);
     const double tol = PM_LME_TOL * c->h;
     double r[2], J[3];
+    const int warm = lam[0] != 0 || lam[1] != 0;
     if (lme_newton_retry(m, (const double (*)[2])d, md->beta, tol, lam, s->N, r, J) < 0)
         return pm_error_set(PM_ESIM, "lme: the Newton solve for lambda did not converge at (%g, %g)", x[0], x[1]);
     double kappa = lme_gradients(m, (const double (*)[2])d, s->N, r, J, s->dN);
+    /* Where the start changes lambda beyond round-off: the solve stops at |r| <= tol, which leaves
+     * lambda uncertain by about tol / lambda_min(J), so near the hull (J ill-conditioned) a warm and
+     * a cold start can end on different sides of cond_tol or of a failure, and the stencil would
+     * depend on the history. There the solve is redone from lambda = 0, as without a start. */
+    if (warm && kappa > 1e-2 * md->cond_tol) {
+        lam[0] = lam[1] = 0;
+        if (pm_lme_newton(m, (const double (*)[2])d, md->beta, tol, lam, s->N, r, J) < 0)
+            return pm_error_set(PM_ESIM, "lme: the Newton solve for lambda did not converge at (%g, %g)", x[0],
+                                x[1]);
+        kappa = lme_gradients(m, (const double (*)[2])d, s->N, r, J, s->dN);
+    }
     /* seed 000 section 5.3: while J is ill-conditioned, add the next-nearest node */
     for (int extra = 0; kappa > md->cond_tol && extra < md->max_extra && m < PM_STENCIL_MAX; extra++) {
         while (m == nf && (size_t)nf < c->n) {
@@ -607,20 +628,6 @@ static int lme_cloud_eval(const mf_data *md, const double x[2], double lam[2], c
 
 /* ---- the approximation --------------------------------------------------------------------- */
 
-static void cache_free(mf_cache *c)
-{
-    free(c->len);
-    free(c->key);
-    free(c->node);
-    free(c->N);
-    free(c->dN);
-    free(c->lam);
-    free(c->list);
-    free(c->list_len);
-    free(c->list_x);
-    memset(c, 0, sizeof *c);
-}
-
 /* Margin of the candidate lists: a list made at x_L with radius R_L = r + 2 skin + delta holds every
  * node within r of any x with |x - x_L| <= delta as long as the cell list was not rebuilt, since
  * every node then moved at most 2 skin since the list was made (skin each side of its build). */
@@ -634,33 +641,90 @@ static double list_radius(const mf_data *md)
     return first_radius(md) + 2 * md->cloud->skin + list_delta(md->cloud);
 }
 
-static int cache_alloc(mf_cache *c, const mf_data *md, size_t n, size_t slot)
+static void lists_free(mf_lists *L)
 {
-    cache_free(c);
+    free(L->node);
+    free(L->len);
+    free(L->x);
+    free(L->build);
+    memset(L, 0, sizeof *L);
+}
+
+static int lists_alloc(mf_lists *L, const mf_data *md, size_t n)
+{
+    lists_free(L);
     const size_t n1 = n ? n : 1;
     /* room for 1.5 times the nodes of a list's disc in a cloud of spacing h (a denser spot makes
      * lists that do not fit: those points search the cell list) */
     const double rl = list_radius(md) / md->cloud->h;
     const double want = 1.5 * M_PI * rl * rl + 8;
-    c->list_slot = want < 16 ? 16 : want > MF_CAND_MAX ? MF_CAND_MAX : (size_t)want;
+    L->slot = want < 16 ? 16 : want > MF_CAND_MAX ? MF_CAND_MAX : (size_t)want;
+    L->node = malloc(n1 * L->slot * sizeof *L->node);
+    L->len = malloc(n1 * sizeof *L->len);
+    L->x = malloc(2 * n1 * sizeof *L->x);
+    L->build = malloc(n1 * sizeof *L->build);
+    if (!L->node || !L->len || !L->x || !L->build) {
+        lists_free(L);
+        return pm_error_set(PM_ENOMEM, "out of memory for %zu candidate lists", n);
+    }
+    for (size_t i = 0; i < n; i++)
+        L->len[i] = -1;
+    L->n = n;
+    return PM_OK;
+}
+
+/* List i for a point now at x: kept while x is within delta of where it was made and the cell list
+ * was not rebuilt since, made anew otherwise (and then kept for the next calls). NULL when the
+ * list does not fit its slot: the caller searches the cell list. */
+static const mf_list *lists_get(const mf_data *md, const mf_lists *L, size_t i, const double x[2], mf_list *out)
+{
+    int32_t *node = L->node + i * L->slot;
+    double *xl = L->x + 2 * i;
+    const double dx = x[0] - xl[0], dy = x[1] - xl[1], delta = list_delta(md->cloud);
+    if (L->len[i] < 0 || L->build[i] != md->cloud->n_builds || !(dx * dx + dy * dy <= delta * delta)) {
+        if (!isfinite(x[0]) || !isfinite(x[1]))
+            return NULL;
+        const int n = pm_cloud_gather(md->cloud, x, list_radius(md), (int)L->slot, node, NULL, NULL);
+        L->len[i] = n <= (int)L->slot ? n : -1;
+        L->build[i] = md->cloud->n_builds;
+        xl[0] = x[0];
+        xl[1] = x[1];
+    }
+    if (L->len[i] < 0)
+        return NULL;
+    out->node = node;
+    out->n = L->len[i];
+    return out;
+}
+
+static void cache_free(mf_cache *c)
+{
+    free(c->len);
+    free(c->key);
+    free(c->node);
+    free(c->N);
+    free(c->dN);
+    free(c->lam);
+    lists_free(&c->lists);
+    memset(c, 0, sizeof *c);
+}
+
+static int cache_alloc(mf_cache *c, const mf_data *md, size_t n, size_t slot)
+{
+    cache_free(c);
+    const size_t n1 = n ? n : 1;
     c->len = malloc(n1 * sizeof *c->len);
     c->key = malloc(2 * n1 * sizeof *c->key);
     c->node = malloc(n1 * slot * sizeof *c->node);
     c->N = malloc(n1 * slot * sizeof *c->N);
     c->dN = malloc(2 * n1 * slot * sizeof *c->dN);
     c->lam = calloc(2 * n1, sizeof *c->lam);
-    c->list = malloc(n1 * c->list_slot * sizeof *c->list);
-    c->list_len = malloc(n1 * sizeof *c->list_len);
-    c->list_x = malloc(2 * n1 * sizeof *c->list_x);
-    if (!c->len || !c->key || !c->node || !c->N || !c->dN || !c->lam || !c->list || !c->list_len || !c->list_x) {
+    if (!c->len || !c->key || !c->node || !c->N || !c->dN || !c->lam || lists_alloc(&c->lists, md, n)) {
         cache_free(c);
         return pm_error_set(PM_ENOMEM, "out of memory for %zu meshfree stencils", n);
     }
     for (size_t i = 0; i < 2 * n; i++)
         c->key[i] = NAN;
-    for (size_t i = 0; i < n; i++)
-        c->list_len[i] = -1;
-    c->list_build = md->cloud->n_builds;
     c->n = n;
     c->slot = slot;
     return PM_OK;
@@ -726,17 +790,10 @@ static int smoothed_eval(const pm_approx *a, const double x[2], double half, pm_
  * uncached and reports its length, so that the caller can widen the slot and try again. */
 static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longest)
 {
-    mf_data *md = a->data;
-    mf_cache *c = &md->cache;
+    const mf_data *md = a->data;
+    const mf_cache *c = &md->cache;
     const int axisym = md->axisym;
     const double h_warm = md->cloud->h;
-    /* candidate lists hold while the cell list they were made from does */
-    if (c->list_build != md->cloud->n_builds) {
-        for (size_t i = 0; i < c->n; i++)
-            c->list_len[i] = -1;
-        c->list_build = md->cloud->n_builds;
-    }
-    const double list_r = list_radius(md), delta2 = list_delta(md->cloud) * list_delta(md->cloud);
     long first_bad = LONG_MAX;
     int most = 0;
 #pragma omp parallel for schedule(dynamic, 256) num_threads(a->n_threads) reduction(min : first_bad) \
@@ -758,21 +815,8 @@ static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longe
         if (md->smooth && area > 0)
             rc = smoothed_eval(a, x, 0.5 * sqrt(area), &st);
         else {
-            /* the first support's nodes from the point's candidate list, made anew when the point
-             * has moved more than delta from where the list was made (or took another's slot) */
-            int32_t *list = c->list + i * c->list_slot;
-            double *xl = c->list_x + 2 * i;
-            const double lx = x[0] - xl[0], ly = x[1] - xl[1];
-            if (c->list_len[i] < 0 || !(lx * lx + ly * ly <= delta2)) {
-                const int nl = isfinite(x[0]) && isfinite(x[1])
-                                   ? pm_cloud_gather(md->cloud, x, list_r, (int)c->list_slot, list, NULL, NULL)
-                                   : INT_MAX;
-                c->list_len[i] = nl <= (int)c->list_slot ? nl : -1;
-                xl[0] = x[0];
-                xl[1] = x[1];
-            }
-            const mf_list L = {list, c->list_len[i]};
-            rc = point_eval(md, a->ops->name, x, lam, c->list_len[i] >= 0 ? &L : NULL, &st);
+            mf_list buf;
+            rc = point_eval(md, a->ops->name, x, lam, lists_get(md, &c->lists, i, x, &buf), &st);
         }
         if (rc != PM_OK)
             lam[0] = lam[1] = 0;
@@ -839,8 +883,11 @@ static int mf_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_sten
 static void mf_destroy(pm_approx *a)
 {
     mf_data *md = a->data;
-    if (md)
+    if (md) {
         cache_free(&md->cache);
+        lists_free(&md->node_lists);
+        free(md->node_lam);
+    }
     free(a->data);
     a->data = NULL;
 }
@@ -872,6 +919,23 @@ int pm_meshfree_eval(const pm_approx *a, const double x[2], pm_stencil *s)
                             a ? a->ops->name : "(null)");
     double lam[2] = {0, 0};
     return point_eval(a->data, a->ops->name, x, lam, NULL, s);
+}
+
+int pm_meshfree_eval_node(const pm_approx *a, size_t node, pm_stencil *s)
+{
+    if (!pm_approx_is_meshfree(a))
+        return pm_error_set(PM_EINPUT, "pm_meshfree_eval_node: '%s' is not a meshfree approximation",
+                            a ? a->ops->name : "(null)");
+    const mf_data *md = a->data;
+    if (node >= md->cloud->n)
+        return pm_error_set(PM_EINPUT, "pm_meshfree_eval_node: node %zu of a cloud of %zu", node, md->cloud->n);
+    const double x[2] = {md->cloud->x[2 * node], md->cloud->x[2 * node + 1]};
+    double *lam = md->node_lam + 2 * node;
+    mf_list buf;
+    const int rc = point_eval(md, a->ops->name, x, lam, lists_get(md, &md->node_lists, node, x, &buf), s);
+    if (rc != PM_OK)
+        lam[0] = lam[1] = 0;
+    return rc;
 }
 
 pm_meshfree_opts pm_meshfree_opts_default(void)
@@ -946,14 +1010,18 @@ int pm_approx_create_cloud(const char *name, pm_cloud *cloud, const pm_meshfree_
         rc = pm_error_set(PM_EINPUT, "%s: min_nodes must be 3 to %d, not %d", name, PM_STENCIL_MAX, o.min_nodes);
     if (!rc && o.lme_max_extra < 0)
         rc = pm_error_set(PM_EINPUT, "%s: lme_max_extra must not be negative", name);
+    if (!rc) {
+        md->node_lam = calloc(2 * cloud->n, sizeof *md->node_lam);
+        rc = md->node_lam ? lists_alloc(&md->node_lists, md, cloud->n) : pm_error_set(PM_ENOMEM, "out of memory");
+    }
+    pm_approx *a = rc ? NULL : calloc(1, sizeof *a);
+    if (!rc && !a)
+        rc = pm_error_set(PM_ENOMEM, "out of memory");
     if (rc) {
+        lists_free(&md->node_lists);
+        free(md->node_lam);
         free(md);
         return rc;
-    }
-    pm_approx *a = calloc(1, sizeof *a);
-    if (!a) {
-        free(md);
-        return pm_error_set(PM_ENOMEM, "out of memory");
     }
     a->ops = ops;
     a->grid = NULL;
