@@ -31,6 +31,11 @@ typedef enum {
     PM_Q_POSITION = 0, PM_Q_DISPLACEMENT = 1, PM_Q_VELOCITY = 2, PM_Q_STRESS = 3, PM_Q_PLASTIC_STRAIN = 4
 } pm_quantity;
 typedef enum { PM_GRID_RECTANGLE = 0, PM_GRID_GMSH = 1 } pm_grid_type;
+/** When a trial factor of a strength reduction counts as failed (analysis.strength_reduction.criterion). */
+typedef enum {
+    PM_SRF_CONVERGENCE = 0,  /**< the run cannot apply the full gravity: Newton fails after every step cut */
+    PM_SRF_DISPLACEMENT = 1  /**< that, or the largest displacement exceeds a multiple of the elastic one */
+} pm_srf_criterion;
 
 /** The region a body fills. */
 typedef struct pm_shape {
@@ -85,6 +90,15 @@ typedef struct pm_newton_opts {
     int max_step_cuts;            /**< halvings of dt or the load increment before giving up (default 8) */
 } pm_newton_opts;
 
+/** analysis.strength_reduction: search for the factor of safety (pmech/strength_reduction.h). */
+typedef struct pm_srf_opts {
+    int enabled;                  /**< 1 when the key is given */
+    double min, max;              /**< the bracket searched: min must hold, max must fail (defaults 0.5, 3) */
+    double tolerance;             /**< stop when the bracket is this narrow (default 0.01) */
+    pm_srf_criterion criterion;   /**< default PM_SRF_CONVERGENCE (quasi_static), PM_SRF_DISPLACEMENT (explicit) */
+    double displacement_ratio;    /**< PM_SRF_DISPLACEMENT: failed above this many elastic displacements (10) */
+} pm_srf_opts;
+
 /** A whole case. */
 typedef struct pm_case {
     char file[PM_PATH_MAX];       /**< the case file as given */
@@ -110,6 +124,7 @@ typedef struct pm_case {
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
+        pm_srf_opts strength_reduction;
     } analysis;
     struct {
         pm_grid_type type;

@@ -19,5 +19,6 @@
 #include "pmech/progress.h"
 #include "pmech/render.h"
 #include "pmech/sim.h"
+#include "pmech/strength_reduction.h"
 
 #endif

@@ -4,6 +4,7 @@
 #include "pmech/case.h"
 #include "pmech/error.h"
 #include "pmech/sim.h"
+#include "pmech/strength_reduction.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,29 @@ static int bad_usage(const char *what)
 {
     fprintf(stderr, "pmech run: %s\nusage: pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n", what);
     return 2;
+}
+
+/* A case with analysis.strength_reduction is a search of many runs; the factor of safety is its result. */
+static int run_strength_reduction(const pm_case *c, const pm_run_opts *o, const char *dir)
+{
+    pm_srf_result *r = malloc(sizeof *r);
+    if (!r) {
+        fprintf(stderr, "pmech: out of memory\n");
+        return PM_ENOMEM;
+    }
+    int rc = pm_strength_reduction(c, o, r);
+    if (rc) {
+        fprintf(stderr, "pmech: %s\n", pm_error_message());
+        if (rc != PM_EINPUT)
+            fprintf(stderr, "pmech: the trials run so far are in %s/strength_reduction.csv\n", dir);
+    } else {
+        printf("factor of safety %.4f (holds at %.4f, fails at %.4f)\n", r->fos, r->lo, r->hi);
+        if (!o->quiet)
+            fprintf(stderr, "pmech: trials in %s/strength_reduction.csv; the last that held in %s/srf_%.4f/, the "
+                    "first that failed in %s/srf_%.4f/\n", dir, dir, r->lo, dir, r->hi);
+    }
+    free(r);
+    return rc;
 }
 
 int pm_cmd_run(int argc, char **argv)
@@ -56,6 +80,11 @@ int pm_cmd_run(int argc, char **argv)
         return pm_exit_code(rc);
     }
     const char *dir = o.out_dir ? o.out_dir : c.output.directory;
+    if (c.analysis.strength_reduction.enabled) {
+        rc = run_strength_reduction(&c, &o, dir);
+        pm_case_free(&c);
+        return pm_exit_code(rc);
+    }
     rc = pm_run(&c, &o, NULL);
     if (rc) {
         fprintf(stderr, "pmech: %s\n", pm_error_message());

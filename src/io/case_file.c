@@ -28,7 +28,9 @@ static const char *const formulations[] = {"plane_strain", "plane_stress", "axis
 static const char *const methods[] = {"mpm", "gmm", "rkpm", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
                                             "gravity_ramp_time", "damping", "newton", "load_steps",
-                                            "density_update", NULL};
+                                            "density_update", "strength_reduction", NULL};
+static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "displacement_ratio", NULL};
+static const char *const srf_criteria[] = {"convergence", "displacement", NULL};
 static const char *const density_updates[] = {"deformation", "positions", NULL};
 static const char *const analysis_types[] = {"explicit", "implicit", "quasi_static", NULL};
 static const char *const schemes[] = {"musl", "usl", "usf", "newmark_pc", NULL};
@@ -87,6 +89,82 @@ static int parse_shape_function(pm_case *c, const jr_ctx *cx, json_t *root)
                         list);
 }
 
+/*
+ * analysis.strength_reduction. A trial is judged by whether its load steps converge, so the analysis
+ * must come to rest under gravity: quasi-static, or explicit with damping (dynamic relaxation), where
+ * only the displacement can tell a sliding slope from one at rest.
+ */
+static int parse_strength_reduction(pm_case *c, json_t *sr)
+{
+    pm_srf_opts *o = &c->analysis.strength_reduction;
+    if (!sr)
+        return PM_OK;
+    const jr_ctx ac = {c->file, "analysis"};
+    jr_ctx cx = {c->file, "analysis.strength_reduction"};
+    pm_check(jr_expect_object(&ac, "strength_reduction", sr));
+    pm_check(jr_only_keys(&cx, sr, srf_keys));
+    const int explicit = c->analysis.type == PM_ANALYSIS_EXPLICIT;
+    if (c->analysis.type == PM_ANALYSIS_IMPLICIT)
+        return fail(c->file, "analysis.strength_reduction",
+                    "needs analysis.type \"quasi_static\" (or \"explicit\" with damping > 0 as dynamic "
+                    "relaxation); got \"implicit\", whose inertia keeps a failing slope from showing as "
+                    "non-convergence",
+                    NULL);
+    if (explicit && !(c->analysis.damping > 0))
+        return pm_error_set(PM_EINPUT,
+                            "%s: analysis.strength_reduction: with analysis.type \"explicit\" the search needs "
+                            "analysis.damping > 0 (dynamic relaxation to rest); got damping = %g",
+                            c->file, c->analysis.damping);
+    o->enabled = 1;
+    pm_check(jr_number(&cx, sr, "min", 0, 0.5, &o->min));
+    pm_check(jr_range(&cx, "min", o->min, 0, 1, INFINITY, 0));
+    pm_check(jr_number(&cx, sr, "max", 0, 3.0, &o->max));
+    pm_check(jr_range(&cx, "max", o->max, 0, 1, INFINITY, 0));
+    if (!(o->min < o->max))
+        return pm_error_set(PM_EINPUT, "%s: analysis.strength_reduction: min = %g must be below max = %g", c->file,
+                            o->min, o->max);
+    pm_check(jr_number(&cx, sr, "tolerance", 0, 0.01, &o->tolerance));
+    /* factors name their output directories to four decimals */
+    pm_check(jr_range(&cx, "tolerance", o->tolerance, 1e-3, 0, o->max - o->min, 0));
+    int v;
+    pm_check(jr_enum(&cx, sr, "criterion", 0, srf_criteria, explicit ? PM_SRF_DISPLACEMENT : PM_SRF_CONVERGENCE,
+                     &v));
+    o->criterion = (pm_srf_criterion)v;
+    if (explicit && o->criterion == PM_SRF_CONVERGENCE)
+        return fail(c->file, "analysis.strength_reduction.criterion",
+                    "got \"convergence\", but an explicit run has no Newton iterations to converge; use "
+                    "\"displacement\", or analysis.type \"quasi_static\"",
+                    NULL);
+    if (json_object_get(sr, "displacement_ratio") && o->criterion != PM_SRF_DISPLACEMENT)
+        return fail(c->file, "analysis.strength_reduction.displacement_ratio",
+                    "applies to criterion \"displacement\" only; remove it or set the criterion", NULL);
+    pm_check(jr_number(&cx, sr, "displacement_ratio", 0, 10.0, &o->displacement_ratio));
+    pm_check(jr_range(&cx, "displacement_ratio", o->displacement_ratio, 1, 1, INFINITY, 0));
+    return PM_OK;
+}
+
+/* The search lowers the strength of Mohr-Coulomb and Drucker-Prager materials; without one it has
+ * nothing to do. */
+static int check_strength_reduction(const pm_case *c)
+{
+    if (!c->analysis.strength_reduction.enabled)
+        return PM_OK;
+    char list[512] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < c->n_materials; k++) {
+        const char *model = c->materials[k].ops->name;
+        if (!strcmp(model, "mohr_coulomb") || !strcmp(model, "drucker_prager"))
+            return PM_OK;
+        if (used + 100 < sizeof list)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s\"%s\" is %s", k ? ", " : "",
+                                     c->materials[k].name, model);
+    }
+    return pm_error_set(PM_EINPUT,
+                        "%s: analysis.strength_reduction: no material has a strength to reduce (%s); the search "
+                        "lowers the cohesion and friction of mohr_coulomb and drucker_prager materials",
+                        c->file, list);
+}
+
 static int parse_analysis(pm_case *c, json_t *a)
 {
     jr_ctx cx = {c->file, "analysis"};
@@ -139,7 +217,7 @@ static int parse_analysis(pm_case *c, json_t *a)
         pm_check(jr_int(&nc, jn, "max_step_cuts", 0, 8, 0, 60, &n));
         nw->max_step_cuts = (int)n;
     }
-    return PM_OK;
+    return parse_strength_reduction(c, json_object_get(a, "strength_reduction"));
 }
 
 static int file_exists(const char *path)
@@ -696,6 +774,7 @@ static int parse_root(pm_case *c, json_t *root)
         return fail(c->file, "grid", "required key is missing", NULL);
     pm_check(parse_grid(c, g));
     pm_check(parse_materials(c, json_object_get(root, "materials")));
+    pm_check(check_strength_reduction(c));
     pm_check(parse_bodies(c, json_object_get(root, "bodies")));
     pm_check(parse_bcs(c, json_object_get(root, "boundary_conditions")));
     pm_check(parse_probes(c, json_object_get(root, "probes")));

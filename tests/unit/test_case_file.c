@@ -220,6 +220,104 @@ static void shape_function_follows_the_method(void **st)
            "\"method\": \"gmm\",\n  \"max_condition\": 0.5,\n", "max_condition", "0.5");
 }
 
+/* base with each pair {from, to} of @p edits replaced in turn (first occurrence) */
+static int load_edits(const char *const *edits, pm_case *c)
+{
+    static char a[8192], b[8192];
+    char *cur = a, *next = b;
+    snprintf(cur, sizeof a, "%s", base);
+    for (size_t k = 0; edits[k]; k += 2) {
+        const char *at = strstr(cur, edits[k]);
+        assert_non_null(at);
+        snprintf(next, sizeof a, "%.*s%s%s", (int)(at - cur), cur, edits[k + 1], at + strlen(edits[k]));
+        char *t = cur;
+        cur = next;
+        next = t;
+    }
+    return pm_case_load_buffer(cur, strlen(cur), "dir/case.json", c);
+}
+
+static const char *const explicit_head = "\"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": 0.01,";
+static const char *const elastic_steel = "\"model\": \"linear_elastic\", \"density\": 7800,";
+static const char *const mc_steel = "\"model\": \"mohr_coulomb\", \"cohesion\": 1e4, \"friction_angle\": 30, "
+                                    "\"density\": 7800,";
+
+/* a strength-reduction case: `head` replaces the analysis' type, scheme and end time, `material` the
+ * steel's model; the message must hold every one of `parts` (none: the case must load) */
+static void srf_case(const char *head, const char *material, const char *const *parts)
+{
+    const char *const edits[] = {explicit_head, head, elastic_steel, material, NULL};
+    pm_case c;
+    int rc = load_edits(edits, &c);
+    if (!parts[0]) {
+        if (rc != PM_OK)
+            fail_msg("expected %s to load, got: %s", head, pm_error_message());
+    } else {
+        if (rc != PM_EINPUT)
+            fail_msg("expected an input error for %s, got %d", head, rc);
+        for (size_t k = 0; parts[k]; k++)
+            if (!strstr(pm_error_message(), parts[k]))
+                fail_msg("message \"%s\" lacks \"%s\"", pm_error_message(), parts[k]);
+    }
+    pm_case_free(&c);
+}
+
+#define SRF(head, material, ...)                               \
+    do {                                                       \
+        const char *const parts_[] = {__VA_ARGS__, NULL};      \
+        srf_case(head, material, parts_);                      \
+    } while (0)
+
+static void strength_reduction_is_checked(void **st)
+{
+    (void)st;
+    pm_case c;
+    const char *const ok[] = {explicit_head,
+                              "\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {},",
+                              elastic_steel, mc_steel, NULL};
+    assert_int_equal(load_edits(ok, &c), PM_OK);
+    const pm_srf_opts *o = &c.analysis.strength_reduction;
+    assert_true(o->enabled && o->min == 0.5 && o->max == 3.0 && o->tolerance == 0.01);
+    assert_int_equal(o->criterion, PM_SRF_CONVERGENCE);
+    pm_case_free(&c);
+    const char *const dyn[] = {explicit_head, "\"type\": \"explicit\", \"end_time\": 1, \"strength_reduction\": {},",
+                               "\"damping\": 0.0", "\"damping\": 0.1", elastic_steel, mc_steel, NULL};
+    assert_int_equal(load_edits(dyn, &c), PM_OK);
+    assert_int_equal(c.analysis.strength_reduction.criterion, PM_SRF_DISPLACEMENT);
+    assert_true(c.analysis.strength_reduction.displacement_ratio == 10.0);
+    pm_case_free(&c);
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"min\": 0.8, \"max\": 2.5, "
+        "\"tolerance\": 0.005, \"criterion\": \"displacement\", \"displacement_ratio\": 4},",
+        mc_steel, NULL);
+    SRF("\"type\": \"implicit\", \"end_time\": 1, \"strength_reduction\": {},", mc_steel,
+        "dir/case.json: analysis.strength_reduction:", "\"quasi_static\"", "got \"implicit\"");
+    SRF("\"type\": \"explicit\", \"end_time\": 1, \"strength_reduction\": {},", mc_steel,
+        "analysis.strength_reduction:", "damping > 0", "got damping = 0");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"min\": 2, \"max\": 1.5},",
+        mc_steel, "analysis.strength_reduction: min = 2 must be below max = 1.5");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"min\": -1},", mc_steel,
+        "analysis.strength_reduction.min: got -1", "> 0");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"tolerance\": 0},", mc_steel,
+        "analysis.strength_reduction.tolerance: got 0", "[0.001, 2.5]");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"tolerence\": 0.1},", mc_steel,
+        "analysis.strength_reduction.tolerence", "did you mean 'tolerance'");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"criterion\": \"newton\"},",
+        mc_steel, "analysis.strength_reduction.criterion", "\"newton\"", "convergence, displacement");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {\"displacement_ratio\": 5},",
+        mc_steel, "analysis.strength_reduction.displacement_ratio", "criterion \"displacement\" only");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": 3,", mc_steel,
+        "analysis.strength_reduction: expected an object");
+    SRF("\"type\": \"quasi_static\", \"end_time\": 1, \"strength_reduction\": {},", elastic_steel,
+        "analysis.strength_reduction: no material has a strength to reduce", "\"steel\" is linear_elastic");
+    const char *const conv[] = {explicit_head,
+                                "\"type\": \"explicit\", \"end_time\": 1, \"strength_reduction\": "
+                                "{\"criterion\": \"convergence\"},",
+                                "\"damping\": 0.0", "\"damping\": 0.1", elastic_steel, mc_steel, NULL};
+    assert_int_equal(load_edits(conv, &c), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "analysis.strength_reduction.criterion: got \"convergence\""));
+    pm_case_free(&c);
+}
+
 static void never_crashes_on_truncations(void **st)
 {
     (void)st;
@@ -272,6 +370,7 @@ int main(void)
         cmocka_unit_test(plastic_parameters_are_checked),
         cmocka_unit_test(line_boundaries_take_a_range_and_normal),
         cmocka_unit_test(shape_function_follows_the_method),
+        cmocka_unit_test(strength_reduction_is_checked),
         cmocka_unit_test(never_crashes_on_truncations),
         cmocka_unit_test(driver_files_load),
     };
