@@ -170,14 +170,18 @@ static int lme_init(pm_approx *a)
     return PM_OK;
 }
 
-/* log Z and the normalised weights at lambda. */
-static double log_z(int n, const double (*d)[2], double beta, const double lam[2], double *p)
+/* log Z and the normalised weights at lambda; q_max (may be NULL) receives the largest |d_I|^2. */
+static double log_z(int n, const double (*d)[2], double beta, const double lam[2], double *p, double *q_max)
 {
-    double fmax = -INFINITY;
+    double fmax = -INFINITY, qm = 0;
     for (int i = 0; i < n; i++) {
-        p[i] = -beta * (d[i][0] * d[i][0] + d[i][1] * d[i][1]) + lam[0] * d[i][0] + lam[1] * d[i][1];
+        const double q = d[i][0] * d[i][0] + d[i][1] * d[i][1];
+        p[i] = -beta * q + lam[0] * d[i][0] + lam[1] * d[i][1];
         fmax = fmax > p[i] ? fmax : p[i];
+        qm = q > qm ? q : qm;
     }
+    if (q_max)
+        *q_max = qm;
     double z = 0;
     for (int i = 0; i < n; i++) {
         p[i] = exp(p[i] - fmax); /* the largest term is 1, so z >= 1 */
@@ -186,6 +190,12 @@ static double log_z(int n, const double (*d)[2], double beta, const double lam[2
     for (int i = 0; i < n; i++)
         p[i] /= z;
     return fmax + log(z > 1 ? z : 1.0);
+}
+
+/* e^a for |a| <= LME_TAYLOR_MAX: the Taylor polynomial of degree 6, remainder below a^7 / 7! */
+static inline double exp_small(double a)
+{
+    return 1 + a * (1 + a * (1.0 / 2 + a * (1.0 / 6 + a * (1.0 / 24 + a * (1.0 / 120 + a * (1.0 / 720))))));
 }
 
 /* Formed as sum p (d - r)(d - r)^T: the difference form sum p d d^T - r r^T loses all digits when
@@ -208,16 +218,18 @@ void pm_lme_resid_hess(int n, const double (*d)[2], const double *p, double r[2]
 int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N, double r[2],
                   double J[3])
 {
-    double q_max = 0;
-    for (int i = 0; i < n; i++) {
-        const double q = d[i][0] * d[i][0] + d[i][1] * d[i][1];
-        q_max = q > q_max ? q : q_max;
-    }
+    double q_max;
+    double lz = log_z(n, d, beta, lambda, N, &q_max), rprev = INFINITY;
     const double dmax = sqrt(q_max);
     const double cap = 4 * beta * dmax + 1 / dmax;
-    double lz = log_z(n, d, beta, lambda, N), rprev = INFINITY;
+    /* log Z = lz + lz_slope + log(lz_prod): what the steps without exp() added, resolved when a
+     * line search needs it */
+    double lz_slope = 0, lz_prod = 1;
+    int have_rj = 0; /* r and J already formed at N by the last step */
     for (int it = 0;; it++) {
-        pm_lme_resid_hess(n, d, N, r, J);
+        if (!have_rj)
+            pm_lme_resid_hess(n, d, N, r, J);
+        have_rj = 0;
         const double rnow = sqrt(r[0] * r[0] + r[1] * r[1]);
         /* converged; or within 100 tol and no longer falling (round-off floor: with large gamma the
          * exponents reach ~ gamma and carry absolute errors ~ 1e-16 gamma) */
@@ -236,32 +248,55 @@ int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double l
             step[1] = -r[1] * beta;
         }
         const double sn = sqrt(step[0] * step[0] + step[1] * step[1]);
-        /* A step that changes no exponent by more than LME_TAYLOR_MAX (the last one or two of a
+        /*
+         * A step that changes no exponent by more than LME_TAYLOR_MAX (the last one or two of a
          * solve, and all of one that starts from a nearby point's lambda) updates the weights
          * without exponentials: N_I(lambda + s) = N_I e^(a_I) / sum_J N_J e^(a_J) with
          * a_I = s . (d_I - r), |a_I| <= |s| (|d_I| + |r|), and e^a by its Taylor polynomial of
          * degree 6, whose remainder a^7 / 7! stays below 1e-17 there. The step must pass the same
-         * sufficient-decrease test as below, log Z moving by s . r + log sum_J N_J e^(a_J). */
+         * sufficient-decrease test as below, log Z moving by s . r + log sum_J N_J e^(a_J). The same
+         * pass sums the new residual and Hessian about the old residual c = r,
+         * r' = c + m, J' = sum N'_I (d_I - c)(d_I - c)^T - m m^T with m = sum N'_I (d_I - c): m is
+         * as small as r, so the shift loses none of the digits of J that the difference form about
+         * 0 would (pm_lme_resid_hess()).
+         */
         if (det > 1e-300 && isfinite(det) && sn * (dmax + rnow) <= LME_TAYLOR_MAX) {
-            const double slope = r[0] * step[0] + r[1] * step[1];
-            double zs = 0;
+            const double slope = r[0] * step[0] + r[1] * step[1], c0 = r[0], c1 = r[1];
+            double zs = 0, s0 = 0, s1 = 0, j0 = 0, j1 = 0, j2 = 0;
             for (int i = 0; i < n; i++) {
-                const double a = step[0] * (d[i][0] - r[0]) + step[1] * (d[i][1] - r[1]);
-                N[i] *= 1 + a * (1 + a * (1.0 / 2 + a * (1.0 / 6 + a * (1.0 / 24 + a * (1.0 / 120 + a / 720)))));
-                zs += N[i];
+                const double u = d[i][0] - c0, v = d[i][1] - c1, a = step[0] * u + step[1] * v;
+                const double p = N[i] * exp_small(a);
+                N[i] = p;
+                zs += p;
+                s0 += p * u;
+                s1 += p * v;
+                j0 += p * u * u;
+                j1 += p * u * v;
+                j2 += p * v * v;
             }
-            const double lz_new = zs > 0 ? lz + slope + log(zs) : INFINITY;
-            if (lz_new <= lz + 1e-4 * slope || (zs > 0 && -slope < 1e-10 * (1 + fabs(lz)))) {
-                const double iz = 1 / zs;
+            if (zs > 0 && (-slope < 1e-10 * (1 + fabs(lz)) || slope + log(zs) <= 1e-4 * slope)) {
+                const double iz = 1 / zs, m0 = s0 * iz, m1 = s1 * iz;
                 for (int i = 0; i < n; i++)
                     N[i] *= iz;
-                lz = lz_new;
+                r[0] = c0 + m0;
+                r[1] = c1 + m1;
+                J[0] = j0 * iz - m0 * m0;
+                J[1] = j1 * iz - m0 * m1;
+                J[2] = j2 * iz - m1 * m1;
+                have_rj = 1;
+                lz_slope += slope;
+                lz_prod *= zs;
                 lambda[0] += step[0];
                 lambda[1] += step[1];
                 continue;
             }
-            lz = log_z(n, d, beta, lambda, N); /* not accepted: back to the weights at lambda */
+            lz = log_z(n, d, beta, lambda, N, NULL); /* not accepted: back to the weights at lambda */
+            lz_slope = 0;
+            lz_prod = 1;
         }
+        lz += lz_slope + log(lz_prod);
+        lz_slope = 0;
+        lz_prod = 1;
         /* a step longer than a few beta * (node distance) only happens where J is tiny (the weight
          * sits on one node, large gamma); cap it so that the line search starts at a useful scale */
         if (sn > cap) {
@@ -275,7 +310,7 @@ int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double l
         for (int ls = 0; ls < 60; ls++) {
             lam[0] = lambda[0] + t * step[0];
             lam[1] = lambda[1] + t * step[1];
-            double lz_new = log_z(n, d, beta, lam, N);
+            double lz_new = log_z(n, d, beta, lam, N, NULL);
             /* near the solution the predicted decrease of log Z (the Newton decrement) drowns in its
              * round-off: take the full Newton step there */
             if (lz_new <= lz + 1e-4 * t * slope || -slope < 1e-10 * (1 + fabs(lz))) {
@@ -286,7 +321,7 @@ int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double l
             t *= 0.5;
         }
         if (!accepted) {
-            log_z(n, d, beta, lambda, N);
+            log_z(n, d, beta, lambda, N, NULL);
             return -1;
         }
         lambda[0] = lam[0];

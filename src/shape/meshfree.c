@@ -121,8 +121,10 @@ double pm_cubic_spline(double z, double *dw)
 static double norm1_3(const double A[3][3])
 {
     double m = 0;
-    for (int j = 0; j < 3; j++)
-        m = fmax(m, fabs(A[0][j]) + fabs(A[1][j]) + fabs(A[2][j]));
+    for (int j = 0; j < 3; j++) {
+        const double c = fabs(A[0][j]) + fabs(A[1][j]) + fabs(A[2][j]);
+        m = c > m ? c : m; /* not fmax(), a call here; a NaN column is caught by the det test */
+    }
     return m;
 }
 
@@ -407,12 +409,12 @@ static inline double pseudo_angle(double u, double v)
 static int inside_hull(int n, const double (*d)[2])
 {
     int q = 0;
-    for (int i = 0; i < n; i++) { /* u = -d_x > 0 etc.; & and | so that the loop has no branches */
+    for (int i = 0; i < n; i++) { /* u = -d_x > 0 etc.; & and | so that only the exit branches */
         const int ur = d[i][0] < 0, ul = d[i][0] > 0, va = d[i][1] < 0, vb = d[i][1] > 0;
         q |= (ur & va) | (ul & va) << 1 | (ul & vb) << 2 | (ur & vb) << 3;
+        if (q == 15)
+            return 1;
     }
-    if (q == 15)
-        return 1;
     int h = 0;
     for (int i = 0; i < n; i++)
         h |= (d[i][0] < 0) | (d[i][0] > 0) << 1 | (d[i][1] < 0) << 2 | (d[i][1] > 0) << 3;

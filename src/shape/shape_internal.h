@@ -90,7 +90,7 @@ int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double la
  * @param lambda in: starting guess; out: the solution
  * @param N receives the n values
  * @param r receives the final residual sum N_I d_I
- * @param J receives the final Hessian (xx, xy, yy) as pm_lme_resid_hess() forms it
+ * @param J receives the final Hessian (xx, xy, yy), sum N_I (d_I - r)(d_I - r)^T
  * @return Newton iterations taken (>= 0), or -1 if the solve did not converge
  */
 int pm_lme_newton(int n, const double (*d)[2], double beta, double tol, double lambda[2], double *N, double r[2],
