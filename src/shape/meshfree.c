@@ -820,9 +820,8 @@ static int cache_fill(pm_approx *a, const pm_particles *p, long *bad, int *longe
             mf_list buf;
             rc = point_eval(md, a->ops->name, x, lam, lists_get(md, &c->lists, i, x, &buf), &st);
         }
-        if (rc != PM_OK)
-            lam[0] = lam[1] = 0;
         if (rc != PM_OK) {
+            lam[0] = lam[1] = 0;
             first_bad = (long)i < first_bad ? (long)i : first_bad;
             continue;
         }
