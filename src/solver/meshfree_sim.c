@@ -423,7 +423,7 @@ static void move_gmm_nodes(pm_sim *s, const double *d, double scale)
 #pragma omp parallel for schedule(dynamic, 256) num_threads(s->nd.n_threads)
     for (size_t I = 0; I < nn; I++) {
         pm_stencil st;
-        if (pm_meshfree_eval(s->approx, mf->cloud->x + 2 * I, &st) != PM_OK) {
+        if (pm_meshfree_eval_node(s->approx, I, &st) != PM_OK) {
             /* LME at a vertex of the cloud's hull, where it interpolates: the coefficient is the value */
             dx[2 * I] = d[2 * I];
             dx[2 * I + 1] = d[2 * I + 1];
