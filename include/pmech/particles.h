@@ -16,10 +16,16 @@
 extern "C" {
 #endif
 
-/** Entries of the 2-D deformation gradient per particle. */
-#define PM_NF 5
-/** Entries of the 2-D stress per particle. */
-#define PM_NS 4
+/** Spatial dimension of the build: the stride of every vector array (x[PM_DIM * i + d]). */
+#ifndef PM_DIM
+#define PM_DIM 2
+#endif
+/** Entries of the deformation gradient per particle: the in-plane PM_DIM x PM_DIM block, plus the
+ *  out-of-plane (or hoop) stretch in 2-D. */
+#define PM_NF (PM_DIM * PM_DIM + (PM_DIM == 2))
+/** Entries of the stress per particle: xx, yy, zz, xy in 2-D (zz out of plane); the six of a
+ *  symmetric tensor in 3-D. */
+#define PM_NS (PM_DIM == 2 ? 4 : 6)
 
 /** Index of each entry of F in the per-particle block of pm_particles::F. */
 enum { PM_FXX = 0, PM_FXY = 1, PM_FYX = 2, PM_FYY = 3, PM_FZZ = 4 };

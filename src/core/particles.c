@@ -1,35 +1,48 @@
 #include "pmech/particles.h"
 #include "pmech/error.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Widths of the double arrays, in the order of the struct; kept in one table so that
- * allocation, byte counts and permutation cannot disagree. */
-#define N_DOUBLE_ARRAYS 12
+/*
+ * The particle fields, one row each: where the pointer sits in pm_particles, its element size and
+ * its width. Allocation, freeing, byte counts and permutation all walk this table, so adding a field
+ * is one row (and packing particles for distributed runs will walk it too).
+ */
+typedef struct field_row {
+    size_t offset;     /* of the array pointer inside pm_particles */
+    size_t elem;       /* bytes of one entry */
+    size_t width;      /* entries per particle; 0: n_state */
+} field_row;
 
-static double **double_array(pm_particles *p, int k, size_t *width)
+#define FIELD(member, type, w) { offsetof(pm_particles, member), sizeof(type), (w) }
+static const field_row fields[] = {
+    FIELD(x, double, PM_DIM),      FIELD(x0, double, PM_DIM),   FIELD(v, double, PM_DIM),
+    FIELD(a, double, PM_DIM),      FIELD(mass, double, 1),      FIELD(vol, double, 1),
+    FIELD(vol0, double, 1),        FIELD(F, double, PM_NF),     FIELD(stress, double, PM_NS),
+    FIELD(eps_p, double, 1),       FIELD(state, double, 0),     FIELD(hsize, double, PM_DIM),
+    FIELD(material, int32_t, 1),   FIELD(body, int32_t, 1),     FIELD(cell, int32_t, 1),
+};
+#undef FIELD
+#define N_FIELDS (sizeof fields / sizeof fields[0])
+
+static void **field_ptr(pm_particles *p, size_t k)
 {
-    switch (k) {
-    case 0: *width = 2; return &p->x;
-    case 1: *width = 2; return &p->x0;
-    case 2: *width = 2; return &p->v;
-    case 3: *width = 2; return &p->a;
-    case 4: *width = 1; return &p->mass;
-    case 5: *width = 1; return &p->vol;
-    case 6: *width = 1; return &p->vol0;
-    case 7: *width = PM_NF; return &p->F;
-    case 8: *width = PM_NS; return &p->stress;
-    case 9: *width = 1; return &p->eps_p;
-    case 10: *width = p->n_state; return &p->state;
-    default: *width = 2; return &p->hsize;
-    }
+    return (void **)((char *)p + fields[k].offset);
+}
+
+static size_t field_width(const pm_particles *p, size_t k)
+{
+    return fields[k].width ? fields[k].width : p->n_state;
 }
 
 size_t pm_particles_bytes_per_particle(size_t n_state)
 {
-    return sizeof(double) * (2 + 2 + 2 + 2 + 1 + 1 + 1 + PM_NF + PM_NS + 1 + n_state + 2) +
-           3 * sizeof(int32_t);
+    size_t b = 0;
+    for (size_t k = 0; k < N_FIELDS; k++)
+        b += fields[k].elem * (fields[k].width ? fields[k].width : n_state);
+    return b;
 }
 
 int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state)
@@ -38,18 +51,13 @@ int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state)
     p->n = n;
     p->n_state = n_state;
     size_t cnt = n ? n : 1;
-    for (int k = 0; k < N_DOUBLE_ARRAYS; k++) {
-        size_t w;
-        double **arr = double_array(p, k, &w);
-        *arr = calloc(cnt * (w ? w : 1), sizeof(double));
+    for (size_t k = 0; k < N_FIELDS; k++) {
+        const size_t w = field_width(p, k);
+        void **arr = field_ptr(p, k);
+        *arr = calloc(cnt * (w ? w : 1), fields[k].elem);
         if (!*arr)
             goto fail;
     }
-    p->material = calloc(cnt, sizeof(int32_t));
-    p->body = calloc(cnt, sizeof(int32_t));
-    p->cell = calloc(cnt, sizeof(int32_t));
-    if (!p->material || !p->body || !p->cell)
-        goto fail;
     return PM_OK;
 fail:
     pm_particles_free(p);
@@ -59,14 +67,8 @@ fail:
 
 void pm_particles_free(pm_particles *p)
 {
-    for (int k = 0; k < N_DOUBLE_ARRAYS; k++) {
-        size_t w;
-        double **arr = double_array(p, k, &w);
-        free(*arr);
-    }
-    free(p->material);
-    free(p->body);
-    free(p->cell);
+    for (size_t k = 0; k < N_FIELDS; k++)
+        free(*field_ptr(p, k));
     memset(p, 0, sizeof *p);
 }
 
@@ -81,23 +83,25 @@ static void permute_doubles(double *a, size_t w, size_t n, const uint32_t *perm,
     }
 }
 
-static void permute_ints(int32_t *a, size_t n, const uint32_t *perm, int32_t *scratch)
+static void permute_ints(int32_t *a, size_t w, size_t n, const uint32_t *perm, int32_t *scratch)
 {
-    for (size_t i = 0; i < n; i++)
-        scratch[i] = a[perm[i]];
-    memcpy(a, scratch, n * sizeof(int32_t));
+    for (size_t c = 0; c < w; c++) {
+        for (size_t i = 0; i < n; i++)
+            scratch[i] = a[(size_t)perm[i] * w + c];
+        for (size_t i = 0; i < n; i++)
+            a[i * w + c] = scratch[i];
+    }
 }
 
 int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch, int32_t *iscratch)
 {
-    for (int k = 0; k < N_DOUBLE_ARRAYS; k++) {
-        size_t w;
-        double **arr = double_array(p, k, &w);
-        if (w)
-            permute_doubles(*arr, w, p->n, perm, scratch);
+    for (size_t k = 0; k < N_FIELDS; k++) {
+        const size_t w = field_width(p, k);
+        void *arr = *field_ptr(p, k);
+        if (fields[k].elem == sizeof(double))
+            permute_doubles(arr, w, p->n, perm, scratch);
+        else
+            permute_ints(arr, w, p->n, perm, iscratch);
     }
-    permute_ints(p->material, p->n, perm, iscratch);
-    permute_ints(p->body, p->n, perm, iscratch);
-    permute_ints(p->cell, p->n, perm, iscratch);
     return PM_OK;
 }
