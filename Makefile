@@ -25,8 +25,10 @@ test: build
 demo: build
 	@sh tools/demo.sh $(BUILD)/pmech $(DEMO)
 
+# PREFIX is read at install time (not only at the first configure), so `make install PREFIX=DIR` always
+# installs into DIR
 install: build
-	cmake --install $(BUILD)
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # Sanitizer configuration: the same tests under ASan and UBSan.
 asan: deps

@@ -10,10 +10,32 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define RUN_USAGE "usage: pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n"
+
 static int bad_usage(const char *what)
 {
-    fprintf(stderr, "pmech run: %s\nusage: pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n", what);
+    fprintf(stderr, "pmech run: %s\n" RUN_USAGE, what);
     return 2;
+}
+
+static int help(void)
+{
+    printf(RUN_USAGE
+           "\n"
+           "Run the case file CASE.json (keys: docs/input.md) to its end time.\n"
+           "\n"
+           "  -o, --output DIR  write results to DIR instead of the case's output.directory\n"
+           "  -q, --quiet       no progress line\n"
+           "  -v, --verbose     implicit runs: print every Newton iteration instead of the progress line\n"
+           "  --threads N       OpenMP threads (default: OMP_NUM_THREADS if set, else all cores, but one\n"
+           "                    for runs of fewer than 5,000 particles)\n"
+           "  -h, --help        this text\n"
+           "\n"
+           "Outputs: particles.pvd (open in ParaView) with one particles_NNNNNN.vtu per frame, grid.vtu,\n"
+           "probes.csv, energy.csv, run.json; implicit runs add newton.log and reactions.csv; a case with\n"
+           "analysis.strength_reduction writes strength_reduction.csv and one srf_<F>/ per trial.\n"
+           "Exit codes: 0 success, 1 the simulation failed (outputs so far stay valid), 2 invalid input.\n");
+    return 0;
 }
 
 /* A case with analysis.strength_reduction is a search of many runs; the factor of safety is its result. */
@@ -44,6 +66,8 @@ int pm_cmd_run(int argc, char **argv)
     const char *case_file = NULL;
     pm_run_opts o = {.out_dir = NULL, .quiet = 0, .threads = 0, .write_output = 1};
     for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))
+            return help();
         if (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--output")) {
             if (++i >= argc)
                 return bad_usage("-o needs a directory");

@@ -10,17 +10,17 @@ static void usage(FILE *f)
             "pmech %s - particle solver for large-deformation solid mechanics (MPM, GMM, RKPM)\n"
             "\n"
             "usage:\n"
-            "  pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n"
+            "  pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N] (pmech run --help)\n"
             "      run a case file; outputs (ParaView particles.pvd, grid.vtu, probes.csv,\n"
             "      energy.csv, run.json; implicit runs add newton.log and reactions.csv) go to\n"
             "      DIR (default: the case's output.directory); --verbose prints every Newton\n"
             "      iteration of implicit runs instead of the progress line\n"
-            "  pmech material DRIVER.json [-o OUT.csv]\n"
+            "  pmech material DRIVER.json [-o OUT.csv]       (pmech material --help)\n"
             "      drive one material point along a stress/strain path and write CSV\n"
             "  pmech --help | --version\n"
             "\n"
             "exit codes: 0 success, 1 the simulation failed, 2 invalid input\n"
-            "input reference: docs/input.md\n",
+            "input reference: docs/input.md (installed: PREFIX/share/doc/pmech/input.md)\n",
             PMECH_VERSION);
 }
 

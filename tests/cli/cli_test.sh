@@ -22,6 +22,10 @@ expect_exit 0 "--version" "$PMECH" --version
 check "version printed" has "pmech " out.txt
 expect_exit 0 "--help" "$PMECH" --help
 check "help names run" has "pmech run" out.txt
+expect_exit 0 "run --help" "$PMECH" run --help
+check "run --help lists --threads" has "--threads N" out.txt
+expect_exit 0 "material --help" "$PMECH" material --help
+check "material --help gives usage" has "pmech material DRIVER.json" out.txt
 expect_exit 2 "no arguments" "$PMECH"
 expect_exit 2 "unknown command" "$PMECH" frobnicate
 expect_exit 2 "missing case file" "$PMECH" run does-not-exist.json
