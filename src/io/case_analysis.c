@@ -120,6 +120,11 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
     pm_check(jr_range(&cx, "damping", c->analysis.damping, 0, 0, 1, 0));
     pm_check(jr_enum(&cx, a, "density_update", 0, density_updates, 0, &v));
     c->analysis.density_from_positions = v;
+    if (c->method != PM_METHOD_MPM && c->analysis.density_from_positions)
+        return pm_error_set(PM_EINPUT,
+                            "%s: analysis.density_update: \"positions\" needs the cells of method 'mpm'; with gmm "
+                            "and rkpm use \"deformation\" (volume from det F)",
+                            c->file);
     long n;
     pm_check(jr_int(&cx, a, "load_steps", 0, 10, 1, 100000000, &n));
     c->analysis.load_steps = (int)n;
