@@ -21,7 +21,8 @@ static const char *tmpl =
     "  \"grid\": { \"type\": \"rectangle\", \"size\": [1, 1], \"cells\": [4, 4] },\n"
     "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,\n"
     "                   \"youngs_modulus\": 1e6, \"poisson_ratio\": 0.3 } ],\n"
-    "  \"bodies\": [ { \"material\": \"m\", \"shape\": { \"type\": \"rectangle\", \"min\": [0, 0], \"max\": [1, 0.5] } } ],\n"
+    "  \"bodies\": [ { \"material\": \"m\",\n"
+    "                \"shape\": { \"type\": \"rectangle\", \"min\": [0, 0], \"max\": [1, 0.5] } } ],\n"
     "  \"boundary_conditions\": [ { \"type\": \"fixed\", \"boundary\": \"x_min\", \"directions\": [\"x\"] }, %s ] }\n";
 
 static const char *friction = "{ \"type\": \"friction\", \"boundary\": \"y_min\", \"coefficient\": 0.3 }";

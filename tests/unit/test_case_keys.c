@@ -291,7 +291,8 @@ static void every_case_key_documented_and_every_documented_key_accepted(void **s
                 for (const char *const *q = ks[j].keys; *q; q++)
                     ok |= !strcmp(*q, own.v[k]);
                 if (!ok)
-                    problem("%s: type `%s`: its row documents `%s`, which the loader refuses", head, ks[j].variant, own.v[k]);
+                    problem("%s: type `%s`: its row documents `%s`, which the loader refuses", head, ks[j].variant,
+                            own.v[k]);
             }
         }
     }

@@ -64,8 +64,8 @@ static void expect_pixel(const picture *p, int x, int y, const double rgb[3], in
 
 static void grid(pm_grid *g, double lx, double ly)
 {
-    const double origin[2] = {0, 0}, size[2] = {lx, ly};
-    const int cells[2] = {2, 2};
+    const double origin[PM_DIM] = {0, 0}, size[PM_DIM] = {lx, ly};
+    const int cells[PM_DIM] = {2, 2};
     assert_int_equal(pm_grid_rectangle(g, origin, size, cells, PM_QUAD4), PM_OK);
 }
 
@@ -121,7 +121,7 @@ static void speed_colours_at_the_particles(void **state)
     pm_particles p;
     grid(&g, 2, 1);
     particles(&p, 3);
-    const double v1[2] = {1.5, 2.0}, v2[2] = {3.0, 4.0}; /* |v| = 2.5 and 5 */
+    const double v1[PM_DIM] = {1.5, 2.0}, v2[PM_DIM] = {3.0, 4.0}; /* |v| = 2.5 and 5 */
     memcpy(p.v + PM_DIM * 1, v1, sizeof v1);
     memcpy(p.v + PM_DIM * 2, v2, sizeof v2);
     assert_int_equal(pm_render_particles(png, &g, &p, PM_FIELD_SPEED, 400, NULL), PM_OK);

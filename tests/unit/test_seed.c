@@ -141,7 +141,7 @@ static void polygon_of_whole_cells(void **state)
 }
 
 /* Points of the n x n Gauss rule of every cell that a test keeps: the count seeding must give. */
-static size_t brute_count(int nx, int ny, int n, int (*inside)(const double x[2]))
+static size_t brute_count(int nx, int ny, int n, int (*inside)(const double x[PM_DIM]))
 {
     static const double g2 = 0.5773502691896257645; /* n = 2: +-1/sqrt(3) */
     assert_int_equal(n, 2);
@@ -151,20 +151,21 @@ static size_t brute_count(int nx, int ny, int n, int (*inside)(const double x[2]
         for (int i = 0; i < nx; i++)
             for (int b = 0; b < 2; b++)
                 for (int a = 0; a < 2; a++) {
-                    const double x[2] = {(i + 0.5 * (1 + (a ? g2 : -g2))) * hx, (j + 0.5 * (1 + (b ? g2 : -g2))) * hy};
+                    const double x[PM_DIM] = {(i + 0.5 * (1 + (a ? g2 : -g2))) * hx,
+                                              (j + 0.5 * (1 + (b ? g2 : -g2))) * hy};
                     k += (size_t)inside(x);
                 }
     return k;
 }
 
-static int in_circle(const double x[2])
+static int in_circle(const double x[PM_DIM])
 {
     return (x[0] - 1) * (x[0] - 1) + (x[1] - 0.5) * (x[1] - 0.5) <= 0.4 * 0.4;
 }
 
 /* Strictly inside the triangle (0.1, 0.1), (1.9, 0.2), (0.6, 0.9) by the signs of its edge functions. */
-static const double tri[3][2] = {{0.1, 0.1}, {1.9, 0.2}, {0.6, 0.9}};
-static int in_triangle(const double x[2])
+static const double tri[3][PM_DIM] = {{0.1, 0.1}, {1.9, 0.2}, {0.6, 0.9}};
+static int in_triangle(const double x[PM_DIM])
 {
     for (int k = 0; k < 3; k++) {
         const double *a = tri[k], *b = tri[(k + 1) % 3];
@@ -232,7 +233,8 @@ static void a_body_without_points_is_an_input_error(void **state)
 {
     (void)state;
     seeded s;
-    int rc = seed(&s, "plane_strain", 8, 4, "quad4", 1, "{ \"type\": \"circle\", \"center\": [0.5, 0.5], \"radius\": 0.01 }");
+    int rc = seed(&s, "plane_strain", 8, 4, "quad4", 1,
+                  "{ \"type\": \"circle\", \"center\": [0.5, 0.5], \"radius\": 0.01 }");
     assert_int_equal(rc, PM_EINPUT);
     assert_non_null(strstr(pm_error_message(), "case.json: bodies[0] ('body0') yields no particle"));
     release(&s);
