@@ -15,23 +15,6 @@
 /* Below this many particles a run uses one thread unless --threads or OMP_NUM_THREADS says otherwise. */
 #define PM_PARTICLES_PER_THREAD_MIN 5000
 
-static int check_supported(const pm_case *c)
-{
-    if (c->analysis.type != PM_ANALYSIS_EXPLICIT)
-        for (size_t b = 0; b < c->n_bcs; b++)
-            if (c->bcs[b].type == PM_BC_FRICTION)
-                return pm_error_set(PM_EINPUT,
-                                    "%s: boundary_conditions[%zu].type: 'friction' needs analysis.type 'explicit' "
-                                    "(implicit contact is not available in this version); use 'fixed' or 'velocity'",
-                                    c->file, b);
-    if (c->method != PM_METHOD_MPM && c->analysis.density_from_positions)
-        return pm_error_set(PM_EINPUT,
-                            "%s: analysis.density_update: \"positions\" needs the cells of method 'mpm'; with gmm "
-                            "and rkpm use \"deformation\" (volume from det F)",
-                            c->file);
-    return PM_OK;
-}
-
 /* Step size for the next step: fixed, or cfl * h / (c + |v|) from the last stress update. */
 static double next_dt(const pm_sim *s)
 {
@@ -159,7 +142,6 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     const double wall0 = pm_wall_seconds();
     if (out_sim)
         *out_sim = NULL;
-    pm_check(check_supported(c));
     int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
     pm_sim *s = NULL;
     pm_check(pm_sim_create(c, &s, threads));

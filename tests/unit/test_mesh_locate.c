@@ -1,13 +1,11 @@
 /* Point location on unstructured grids: agreement with brute force (also in a hole and outside),
- * the walk from a hint cell, the speed on 1e6 random points, and the linear kind on unstructured
+ * the walk from a hint cell, 1e6 random points all found, and the linear kind on unstructured
  * quads (isoparametric inverse map) and triangles. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
-
-#include <time.h>
 
 #include "shape_check.h"
 #include "mesh/mesh_internal.h"
@@ -66,27 +64,26 @@ static void walk_from_hint(void **state)
     pm_grid_free(&g);
 }
 
-static void million_points_fast(void **state)
+/* A million random points of the unit square all land in a cell (the mesh has no hole here), and a
+ * sample of them in the one brute force finds. How fast this goes is bench/'s concern, not a test's. */
+static void million_points_all_found(void **state)
 {
     (void)state;
     pm_grid g;
     assert_int_equal(sc_jittered_grid(&g, 300, PM_TRI3, 0.5, 0.0, 17), 0);
     const size_t n = 1000000;
-    double *x = malloc(2 * n * sizeof(double));
+    double *x = malloc(PM_DIM * n * sizeof(double));
     unsigned seed = 23;
-    for (size_t i = 0; i < 2 * n; i++)
+    for (size_t i = 0; i < PM_DIM * n; i++)
         x[i] = sc_rnd(&seed);
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
     long found = 0;
-    for (size_t i = 0; i < n; i++)
-        found += pm_grid_locate(&g, x + 2 * i) >= 0;
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    printf("located %ld of %zu random points in %zu triangles in %.3f s (%.0f ns per point)\n", found, n, g.n_cells,
-           secs, 1e9 * secs / (double)n);
+    for (size_t i = 0; i < n; i++) {
+        const int32_t c = pm_grid_locate(&g, x + PM_DIM * i);
+        found += c >= 0;
+        if (i % 10000 == 0)
+            assert_int_equal(c, brute(&g, x + PM_DIM * i));
+    }
     assert_int_equal(found, (long)n);
-    assert_true(secs < 1.0);
     free(x);
     pm_grid_free(&g);
 }
@@ -127,7 +124,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(agrees_with_brute_force),
         cmocka_unit_test(walk_from_hint),
-        cmocka_unit_test(million_points_fast),
+        cmocka_unit_test(million_points_all_found),
         cmocka_unit_test(linear_on_unstructured),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

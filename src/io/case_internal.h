@@ -1,0 +1,88 @@
+/*
+ * Internal to src/io: the parts of case loading. case_file.c reads the file and the top level and
+ * calls one parser per section (case_analysis.c, case_grid.c, case_bodies.c, case_conditions.c);
+ * case_keys.c holds the one table of the keys every object of a case accepts, which the parsers
+ * check against and the documentation test compares with docs/input.md.
+ */
+#ifndef PMECH_IO_CASE_INTERNAL_H
+#define PMECH_IO_CASE_INTERNAL_H
+
+#include <jansson.h>
+#include <stddef.h>
+
+#include "pmech/case.h"
+#include "pmech/particles.h"
+
+/** The objects of a case that take keys (materials excepted: their keys come from each model). */
+typedef enum pm_case_keyset_id {
+    PM_KEYS_TOP,
+    PM_KEYS_ANALYSIS,
+    PM_KEYS_NEWTON,
+    PM_KEYS_STRENGTH_REDUCTION,
+    PM_KEYS_GRID_RECTANGLE,
+    PM_KEYS_GRID_GMSH,
+    PM_KEYS_BODY,
+    PM_KEYS_SHAPE_RECTANGLE,
+    PM_KEYS_SHAPE_POLYGON,
+    PM_KEYS_SHAPE_CIRCLE,
+    PM_KEYS_SHAPE_GMSH_GROUP,
+    PM_KEYS_BC,
+    PM_KEYS_BC_FIXED,
+    PM_KEYS_BC_VELOCITY,
+    PM_KEYS_BC_FRICTION,
+    PM_KEYS_BC_LINE,
+    PM_KEYS_PROBE,
+    PM_KEYS_OUTPUT,
+    PM_KEYS_COUNT
+} pm_case_keyset_id;
+
+/** The keys one object of a case accepts. */
+typedef struct pm_case_keyset {
+    const char *path;        /**< the object's key path, [] for any index: "bodies[].shape"; "" the root */
+    const char *variant;     /**< the value of the object's "type" that selects this list, or NULL */
+    const char *const *keys; /**< NULL-terminated, as jr_only_keys() takes them */
+} pm_case_keyset;
+
+/** The allowed keys of object @p id, for jr_only_keys(). */
+const char *const *pm_case_keys(pm_case_keyset_id id);
+
+/** The whole key table, PM_KEYS_COUNT entries in pm_case_keyset_id order; @p n receives the count. */
+const pm_case_keyset *pm_case_keysets(size_t *n);
+
+/** Set PM_EINPUT "<file>: <path>: <what><detail>" (detail may be NULL) and return it. */
+int pm_case_fail(const char *file, const char *path, const char *what, const char *detail);
+
+/**
+ * `analysis` with its `newton` and `strength_reduction` objects. Needs c->method (read before it)
+ * for the checks that tie the analysis to the method.
+ */
+int pm_case_parse_analysis(pm_case *c, json_t *a);
+
+/** After the materials: a strength-reduction search needs a material whose strength it can reduce. */
+int pm_case_check_strength_reduction(const pm_case *c);
+
+/** `grid`: a rectangle's origin, size, cells and element, or a gmsh file resolved against c->dir. */
+int pm_case_parse_grid(pm_case *c, json_t *g);
+
+/** Refuse particle and node counts that cannot be allocated, before anything is (after the bodies). */
+int pm_case_check_sizes(const pm_case *c);
+
+/** `materials`: a non-empty list of uniquely named materials. */
+int pm_case_parse_materials(pm_case *c, json_t *ms);
+
+/** `bodies`: after the grid and the materials, which the bodies name and must lie in. */
+int pm_case_parse_bodies(pm_case *c, json_t *bs);
+
+/** The bounding box of a shape; NaN for a gmsh group, whose extent only the mesh knows. */
+void pm_case_shape_box(const pm_shape *s, double lo[PM_DIM], double hi[PM_DIM]);
+
+/** `boundary_conditions`: after the analysis and the grid, which decide what a condition may be. */
+int pm_case_parse_bcs(pm_case *c, json_t *bcs);
+
+/** `probes`: after the bodies, which a probe may name. */
+int pm_case_parse_probes(pm_case *c, json_t *ps);
+
+/** `output`: after the analysis, whose end time sets the default interval. */
+int pm_case_parse_output(pm_case *c, json_t *o);
+
+#endif
