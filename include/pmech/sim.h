@@ -18,13 +18,6 @@
 extern "C" {
 #endif
 
-/** A node on a frictional (Coulomb) grid boundary. */
-typedef struct pm_friction_node {
-    int32_t node;        /**< grid node */
-    double normal[2];    /**< outward unit normal of the boundary */
-    double mu;           /**< friction coefficient */
-} pm_friction_node;
-
 /** Nodal arrays of the background grid; all sized once (no allocation inside steps). */
 typedef struct pm_nodal {
     double *mass;        /**< lumped mass */
@@ -35,8 +28,6 @@ typedef struct pm_nodal {
     double *acc;         /**< acceleration, 2 per node */
     uint8_t *fixed;      /**< bit 0: x prescribed, bit 1: y prescribed */
     double *vfix;        /**< prescribed velocity, 2 per node */
-    size_t n_friction;   /**< frictional boundary nodes */
-    pm_friction_node *friction;
     int n_threads;       /**< scatter buffers for OpenMP threads beyond the first */
     double *scratch;     /**< (n_threads - 1) * 5 * n_nodes doubles: mass, mom/force */
     size_t n_timed;      /**< velocity conditions that end at a given time */
@@ -89,6 +80,7 @@ typedef struct pm_sim {
     double *rho_work;    /**< density from positions: n_nodes + n_cells doubles */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
     struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
+    struct pm_contact *contact; /**< contact surfaces (friction conditions) and the nodes touching them */
     struct pm_mf *mf;    /**< GMM/RKPM: node cloud, moving nodes, boundary rows (NULL for MPM); grid then
                               holds the cloud's nodes without cells */
     pm_scatter scatter;  /**< scatter strategy of the explicit steps (set at creation only) */
@@ -125,8 +117,8 @@ const pm_grid *pm_sim_frame_grid(const pm_sim *s);
 int pm_sim_volumes_from_positions(pm_sim *s);
 
 /**
- * @brief Switch velocity conditions whose `until` time has come to holding their nodes still.
- *        Called at the start of every step.
+ * @brief Switch velocity conditions whose `until` time has come to holding their nodes still, and
+ *        find the nodes touching the contact surfaces at this time. Called at the start of every step.
  */
 void pm_sim_update_constraints(pm_sim *s);
 

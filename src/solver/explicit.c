@@ -11,6 +11,7 @@
  */
 #include "pmech/sim.h"
 #include "pmech/error.h"
+#include "contact/contact.h"
 #include "meshfree_internal.h"
 
 #include <limits.h>
@@ -423,32 +424,6 @@ static inline void gather(const pm_stencil *st, const double *vel, const double 
     }
 }
 
-/* Coulomb friction on a grid boundary (Bardenhagen et al. 2000): the approaching normal velocity is
- * removed and the tangential speed reduced by mu times that change, never reversed. */
-static void apply_friction(const pm_friction_node *fn, double v[2])
-{
-    const double *nrm = fn->normal;
-    const double vn = v[0] * nrm[0] + v[1] * nrm[1];
-    if (vn <= 0)
-        return; /* separating or sliding along: free */
-    double vt[2] = {v[0] - vn * nrm[0], v[1] - vn * nrm[1]};
-    const double speed = hypot(vt[0], vt[1]), cut = fn->mu * vn;
-    const double keep = speed > cut ? 1.0 - cut / speed : 0.0;
-    v[0] = keep * vt[0];
-    v[1] = keep * vt[1];
-}
-
-/* Remove only the approaching normal velocity (no friction impulse): for velocities that are
- * re-projected within a step, where the frictional impulse has already been applied. */
-static void apply_contact_normal(const pm_friction_node *fn, double v[2])
-{
-    const double vn = v[0] * fn->normal[0] + v[1] * fn->normal[1];
-    if (vn > 0) {
-        v[0] -= vn * fn->normal[0];
-        v[1] -= vn * fn->normal[1];
-    }
-}
-
 static void constrain(const pm_nodal *nd, int32_t n, double v[2])
 {
     if (nd->fixed[n] & 1u)
@@ -496,16 +471,7 @@ static void grid_update(pm_sim *s, double dt, int constrain_start)
         a[0] = (vn[0] - v[0]) / dt;
         a[1] = (vn[1] - v[1]) / dt;
     }
-    for (size_t k = 0; k < nd->n_friction; k++) {
-        const pm_friction_node *fn = &nd->friction[k];
-        const int32_t n = fn->node;
-        if (nd->mass[n] > mfloor) {
-            apply_friction(fn, nd->vel_new + 2 * n);
-            constrain(nd, n, nd->vel_new + 2 * n);
-            for (int d = 0; d < 2; d++)
-                nd->acc[2 * n + d] = (nd->vel_new[2 * n + d] - nd->vel[2 * n + d]) / dt;
-        }
-    }
+    pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, dt);
     if (s->mf && s->mf->transform)
         pm_mf_impose_update(s, dt, constrain_start);
 }
@@ -528,11 +494,7 @@ static void grid_velocity_from_momentum(pm_sim *s, double *out)
         v[1] = nd->mom[2 * n + 1] / m;
         constrain(nd, (int32_t)n, v);
     }
-    for (size_t k = 0; k < nd->n_friction; k++) {
-        const pm_friction_node *fn = &nd->friction[k];
-        apply_contact_normal(fn, out + 2 * fn->node);
-        constrain(nd, fn->node, out + 2 * fn->node);
-    }
+    pm_contact_project_normal(s->contact, pm_contact_field_of(nd, out, mfloor));
     if (s->mf && s->mf->transform)
         pm_mf_impose(s, out, 0);
 }
@@ -966,16 +928,7 @@ static int step_newmark_pc(pm_sim *s, double dt)
             vn[d] = v[d] + gamma * dt * a[d];
         }
     }
-    for (size_t k = 0; k < nd->n_friction; k++) {
-        const pm_friction_node *fn = &nd->friction[k];
-        const int32_t n = fn->node;
-        if (!(nd->mass[n] > mfloor))
-            continue;
-        apply_friction(fn, nd->vel_new + 2 * n);
-        constrain(nd, n, nd->vel_new + 2 * n);
-        for (int d = 0; d < 2; d++)
-            nd->acc[2 * n + d] = (nd->vel_new[2 * n + d] - nd->vel[2 * n + d]) / (gamma * dt);
-    }
+    pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, gamma * dt);
     if (s->mf && s->mf->transform)
         pm_mf_impose(s, nd->acc, 1);
 #pragma omp parallel num_threads(nd->n_threads)

@@ -1,6 +1,6 @@
 /* GMM and RKPM inside the MPM solvers (src/solver/meshfree_*.c): the node cloud that replaces the
  * grid, nodes that move with the material, essential conditions through the Kronecker-delta rows
- * and frictional walls. */
+ * (frictional walls are contact surfaces, src/contact). */
 #ifndef PMECH_MESHFREE_INTERNAL_H
 #define PMECH_MESHFREE_INTERNAL_H
 
@@ -10,15 +10,6 @@
 
 struct pm_implicit_ws;
 
-/* A `friction` condition of a meshfree run: a rigid straight wall. Nodes reach it as they move,
- * so the contact set is found again before every step instead of being fixed at t = 0. */
-typedef struct pm_mf_wall {
-    int axis;          /* 0: x = value, 1: y = value */
-    double value;      /* position of the wall */
-    double normal[2];  /* outward normal of the body's domain (pointing into the wall) */
-    double mu;         /* Coulomb coefficient */
-} pm_mf_wall;
-
 typedef struct pm_mf {
     pm_grid background;      /* the case's grid: it creates the nodes and frames output and pictures */
     pm_cloud *cloud;         /* the nodes; s->grid.x aliases cloud->x */
@@ -27,9 +18,6 @@ typedef struct pm_mf {
     pm_kd *kd[2];            /* per component: rows N_I(x_J) of the nodes J whose component is prescribed */
     int32_t *kd_nodes[2];    /* those nodes J */
     double *g;               /* prescribed values, max |B| */
-    size_t n_walls;
-    pm_mf_wall *walls;
-    size_t friction_cap;     /* n_walls * nodes: the contact list never grows during a run */
     int history;             /* implicit: vh, ah hold the nodal velocity and acceleration of the last step */
     double *vh, *ah;         /* 2 per node */
     double *g_nodes;         /* 2 per node: the nodes' displacement of the step */
@@ -40,8 +28,8 @@ typedef struct pm_mf {
  * nodes of the cells holding particles, RKPM nodes the particles; named sides become node sets. */
 int pm_mf_create(pm_sim *s, int n_threads);
 
-/* After the nodal arrays and the conditions exist: friction conditions become walls; with mls
- * and rk_cubic the prescribed components move from nodal flags to Lambda rows. */
+/* After the nodal arrays and the conditions exist: with mls and rk_cubic the prescribed components
+ * move from nodal flags to Lambda rows. */
 int pm_mf_setup_conditions(pm_sim *s);
 
 void pm_mf_destroy(pm_sim *s);
@@ -55,7 +43,7 @@ void pm_mf_impose(pm_sim *s, double *nodal, int what);
 void pm_mf_impose_update(pm_sim *s, double dt, int constrain_start);
 
 /* End of an explicit step: move the nodes with their velocity (RKPM: to the particles), refresh
- * the Lambda rows and the wall contacts. */
+ * the Lambda rows. */
 int pm_mf_after_explicit(pm_sim *s, double dt, const double *vel);
 
 /* End of an implicit step: move the nodes by du and keep v, a at the nodes for the next predictor. */

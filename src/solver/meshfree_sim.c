@@ -13,7 +13,8 @@
  *    for the boundary coefficients after every velocity update (pm_kd_impose); implicit steps add the
  *    constraint rows as a penalty (the multipoint-constraint form). lme interpolates on the hull of
  *    the nodes (weak Kronecker-delta property), so its nodes are constrained directly, as in MPM;
- *  - `friction` conditions become rigid walls whose contact set is found before every step.
+ *  - `friction` conditions (and fixed sides) are rigid walls of the contact module (src/contact)
+ *    whose contact set is found before every step.
  */
 #include "meshfree_internal.h"
 
@@ -171,101 +172,6 @@ int pm_mf_create(pm_sim *s, int n_threads)
     return PM_OK;
 }
 
-/* A `fixed` condition on a grid side that holds the side's normal component: the side bounds the
- * domain as in MPM, where every grid node on it is held. Nodes that reach it later (material
- * spreading over a base) are stopped there by a wall that sticks when the tangent is held too and
- * slides freely otherwise; the nodes on it at t = 0 keep their condition as well. */
-static int side_wall(const pm_case_bc *bc, int *axis, int *hi, double *mu)
-{
-    if (bc->type != PM_BC_FIXED || bc->line_axis >= 0 || !side_of(bc->boundary, axis, hi) ||
-        !(bc->dirs & (1u << *axis)))
-        return 0;
-    *mu = (bc->dirs & (1u << (1 - *axis))) ? INFINITY : 0.0;
-    return 1;
-}
-
-/* Friction conditions, and fixed sides, as walls at the grid side or the given line. */
-static int make_walls(pm_sim *s)
-{
-    const pm_case *c = s->c;
-    pm_mf *mf = s->mf;
-    pm_nodal *nd = &s->nd;
-    free(nd->friction);
-    nd->friction = NULL;
-    nd->n_friction = 0;
-    int axis, hi;
-    double mu;
-    for (size_t b = 0; b < c->n_bcs; b++)
-        mf->n_walls += c->bcs[b].type == PM_BC_FRICTION || side_wall(&c->bcs[b], &axis, &hi, &mu);
-    if (!mf->n_walls)
-        return PM_OK;
-    mf->walls = calloc(mf->n_walls, sizeof *mf->walls);
-    mf->friction_cap = mf->n_walls * s->grid.n_nodes;
-    nd->friction = malloc(mf->friction_cap * sizeof *nd->friction);
-    if (!mf->walls || !nd->friction)
-        return pm_error_set(PM_ENOMEM, "out of memory for friction walls");
-    size_t k = 0;
-    for (size_t b = 0; b < c->n_bcs; b++) {
-        const pm_case_bc *bc = &c->bcs[b];
-        if (side_wall(bc, &axis, &hi, &mu)) {
-            pm_mf_wall *wl = &mf->walls[k++];
-            wl->mu = mu;
-            wl->axis = axis;
-            wl->value = hi ? mf->background.hi[axis] : mf->background.lo[axis];
-            wl->normal[axis] = hi ? 1.0 : -1.0;
-            continue;
-        }
-        if (bc->type != PM_BC_FRICTION)
-            continue;
-        pm_mf_wall *wl = &mf->walls[k++];
-        wl->mu = bc->coefficient;
-        if (bc->line_axis >= 0) {
-            wl->axis = bc->line_axis;
-            wl->value = bc->line_value;
-            wl->normal[0] = bc->line_normal[0];
-            wl->normal[1] = bc->line_normal[1];
-        } else if (side_of(bc->boundary, &axis, &hi)) {
-            wl->axis = axis;
-            wl->value = hi ? mf->background.hi[axis] : mf->background.lo[axis];
-            wl->normal[axis] = hi ? 1.0 : -1.0;
-        } else {
-            return pm_error_set(PM_EINPUT,
-                                "%s: boundary_conditions[%zu].boundary: with method gmm or rkpm, friction needs a "
-                                "grid side (x_min, x_max, y_min, y_max) or a line, not '%s'",
-                                c->file, b, bc->boundary);
-        }
-        if (wl->normal[wl->axis] == 0)
-            return pm_error_set(PM_EINPUT,
-                                "%s: boundary_conditions[%zu]: a friction line of a meshfree run needs a \"normal\" "
-                                "along its axis",
-                                c->file, b);
-    }
-    return PM_OK;
-}
-
-/* The nodes touching or past a wall, where friction acts before this step. */
-static void find_contacts(pm_sim *s)
-{
-    pm_mf *mf = s->mf;
-    pm_nodal *nd = &s->nd;
-    nd->n_friction = 0;
-    const double tol = 1e-6 * s->grid.h_min;
-    for (size_t k = 0; k < mf->n_walls; k++) {
-        const pm_mf_wall *wl = &mf->walls[k];
-        const double sgn = wl->normal[wl->axis] > 0 ? 1.0 : -1.0;
-        for (size_t I = 0; I < s->grid.n_nodes; I++) {
-            const double gap = sgn * (wl->value - s->grid.x[2 * I + wl->axis]);
-            if (gap > tol)
-                continue;
-            pm_friction_node *f = &nd->friction[nd->n_friction++];
-            f->node = (int32_t)I;
-            f->normal[0] = wl->axis == 0 ? sgn : 0.0;
-            f->normal[1] = wl->axis == 1 ? sgn : 0.0;
-            f->mu = wl->mu;
-        }
-    }
-}
-
 /* RKPM: a node held by a side condition lies up to half a particle spacing inside that side; its row
  * is evaluated on the side itself (the node projected onto it), so that the prescribed value holds at
  * the body's boundary and a uniform strain is the discrete solution of a patch. */
@@ -296,8 +202,6 @@ static int side_offsets(pm_sim *s, int comp)
 int pm_mf_setup_conditions(pm_sim *s)
 {
     pm_mf *mf = s->mf;
-    pm_check(make_walls(s));
-    find_contacts(s);
     if (!mf->transform)
         return PM_OK;
     pm_nodal *nd = &s->nd;
@@ -340,7 +244,6 @@ void pm_mf_destroy(pm_sim *s)
         free(mf->kd_nodes[c]);
     }
     free(mf->g);
-    free(mf->walls);
     free(mf->vh);
     free(mf->ah);
     free(mf->g_nodes);
@@ -383,7 +286,8 @@ void pm_mf_impose_update(pm_sim *s, double dt, int constrain_start)
     }
 }
 
-/* After the nodes moved: the cell list, RKPM's node volumes, the Lambda rows, the contacts. */
+/* After the nodes moved: the cell list, RKPM's node volumes, the Lambda rows (the wall contacts are
+ * found at the start of the next step, pm_sim_update_constraints). */
 static int nodes_moved(pm_sim *s)
 {
     pm_mf *mf = s->mf;
@@ -396,7 +300,6 @@ static int nodes_moved(pm_sim *s)
             if (rc)
                 return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): boundary nodes: ", s->step, s->t);
         }
-    find_contacts(s);
     if (mf->failed) {
         mf->failed = 0;
         return pm_error_set(PM_ESIM,

@@ -1,14 +1,16 @@
-/* Setting up a simulation from a case: grid, approximation, particles, nodal arrays, constraints. */
+/* Setting up a simulation from a case: grid, approximation, particles, nodal arrays; its boundary
+ * conditions (boundary.c) and contact surfaces (src/contact). */
 #include "pmech/sim.h"
 #include "pmech/density.h"
 #include "pmech/error.h"
 #include "pmech/implicit.h"
 
+#include "boundary.h"
+#include "contact/contact.h"
 #include "core/seed.h"
 #include "meshfree_internal.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,115 +37,6 @@ static int build_grid(const pm_case *c, pm_grid *g)
     int rc = pm_grid_rectangle(g, c->grid.origin, c->grid.size, c->grid.cells, (pm_element)c->grid.element);
     if (rc)
         return pm_error_prefix(rc, "%s: grid: ", c->file);
-    return PM_OK;
-}
-
-static int add_friction(pm_nodal *nd, const pm_node_set *set, double mu)
-{
-    pm_friction_node *f = realloc(nd->friction, (nd->n_friction + set->n) * sizeof *f);
-    if (!f)
-        return pm_error_set(PM_ENOMEM, "out of memory for friction nodes");
-    nd->friction = f;
-    for (size_t i = 0; i < set->n; i++) {
-        pm_friction_node *fn = &nd->friction[nd->n_friction++];
-        fn->node = set->nodes[i];
-        fn->normal[0] = set->normal[0];
-        fn->normal[1] = set->normal[1];
-        fn->mu = mu;
-    }
-    return PM_OK;
-}
-
-/* A line boundary keeps the nodes between its `from` and `to` and takes its given normal. */
-static int restrict_line(const pm_case *c, size_t b, const pm_grid *g, pm_node_set *set)
-{
-    const pm_case_bc *bc = &c->bcs[b];
-    const int other = 1 - bc->line_axis;
-    const double tol = 1e-9 * g->h_min;
-    size_t kept = 0;
-    for (size_t i = 0; i < set->n; i++) {
-        const double q = g->x[2 * set->nodes[i] + other];
-        if (q >= bc->line_range[0] - tol && q <= bc->line_range[1] + tol)
-            set->nodes[kept++] = set->nodes[i];
-    }
-    if (kept == 0)
-        return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no grid node on %c = %g between %g and %g",
-                            c->file, b, bc->line_axis ? 'y' : 'x', bc->line_value, bc->line_range[0],
-                            bc->line_range[1]);
-    set->n = kept;
-    set->normal[0] = bc->line_normal[0];
-    set->normal[1] = bc->line_normal[1];
-    return PM_OK;
-}
-
-static int apply_bcs(const pm_case *c, pm_grid *g, pm_nodal *nd)
-{
-    if (c->formulation == PM_AXISYMMETRIC) {
-        /* nodes on the axis r = 0 cannot move radially */
-        for (size_t n = 0; n < g->n_nodes; n++)
-            if (fabs(g->x[2 * n]) <= 1e-9 * g->h_min) {
-                nd->fixed[n] |= 1u;
-                nd->vfix[2 * n] = 0.0;
-            }
-    }
-    for (size_t b = 0; b < c->n_bcs; b++) {
-        const pm_case_bc *bc = &c->bcs[b];
-        /* a meshfree friction condition is a wall that nodes reach later (pm_mf_setup_conditions) */
-        if (bc->type == PM_BC_FRICTION && c->method != PM_METHOD_MPM)
-            continue;
-        const pm_node_set *set;
-        if (bc->line_axis >= 0) {
-            char name[64];
-            snprintf(name, sizeof name, "%c=%g", bc->line_axis ? 'y' : 'x', bc->line_value);
-            int k = pm_grid_add_line_set(g, name, bc->line_axis, bc->line_value, NULL);
-            if (k < 0)
-                return pm_error_prefix(k, "%s: boundary_conditions[%zu].boundary: ", c->file, b);
-            pm_check(restrict_line(c, b, g, &g->sets[k]));
-            set = &g->sets[k];
-        } else {
-            set = pm_grid_find_set(g, bc->boundary);
-            if (!set && c->method == PM_METHOD_RKPM)
-                return pm_error_set(PM_EINPUT,
-                                    "%s: boundary_conditions[%zu].boundary: '%s': with method rkpm the nodes are the "
-                                    "particles, so only the grid sides x_min, x_max, y_min, y_max name boundaries",
-                                    c->file, b, bc->boundary);
-            if (!set)
-                return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no boundary '%s' in the grid",
-                                    c->file, b, bc->boundary);
-        }
-        if (set->n == 0)
-            return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no node lies on '%s' at t = 0",
-                                c->file, b, set->name);
-        if (bc->type == PM_BC_FRICTION) {
-            if (set->normal[0] == 0 && set->normal[1] == 0)
-                return pm_error_set(PM_EINPUT,
-                                    "%s: boundary_conditions[%zu]: friction needs a grid side (x_min, x_max, "
-                                    "y_min, y_max) or a line with an outward \"normal\"",
-                                    c->file, b);
-            pm_check(add_friction(nd, set, bc->coefficient));
-            continue;
-        }
-        for (size_t i = 0; i < set->n; i++) {
-            int32_t n = set->nodes[i];
-            for (int d = 0; d < 2; d++) {
-                if (!(bc->dirs & (1u << d)))
-                    continue;
-                nd->fixed[n] |= (uint8_t)(1u << d);
-                nd->vfix[2 * n + d] = bc->type == PM_BC_VELOCITY ? bc->value[d] : 0.0;
-            }
-        }
-        if (bc->type == PM_BC_VELOCITY && isfinite(bc->until) && bc->until > 0) {
-            struct pm_timed_bc *t = realloc(nd->timed, (nd->n_timed + 1) * sizeof *t);
-            if (!t)
-                return pm_error_set(PM_ENOMEM, "out of memory");
-            nd->timed = t;
-            t[nd->n_timed].set = (int)(set - g->sets);
-            t[nd->n_timed].dirs = bc->dirs;
-            t[nd->n_timed].until = bc->until;
-            t[nd->n_timed].done = 0;
-            nd->n_timed++;
-        }
-    }
     return PM_OK;
 }
 
@@ -184,7 +77,6 @@ static void free_nodal(pm_nodal *nd)
     free(nd->acc);
     free(nd->fixed);
     free(nd->vfix);
-    free(nd->friction);
     free(nd->scratch);
     free(nd->timed);
     memset(nd, 0, sizeof *nd);
@@ -237,7 +129,9 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     if ((rc = pm_particles_alloc(&s->p, total, max_state(c))) != 0 ||
         (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 || (meshfree && (rc = pm_mf_create(s, n_threads)) != 0) ||
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads, s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
-        (rc = apply_bcs(c, &s->grid, &s->nd)) != 0 || (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
+        (rc = pm_bc_setup(c, &s->grid, &s->nd)) != 0 ||
+        (rc = pm_contact_create(c, &s->grid, pm_sim_frame_grid(s), &s->contact)) != 0 ||
+        (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
         goto fail;
     /* meshfree points are not binned by cell, and RKPM's particles are its nodes: never reordered */
     s->sort_interval = meshfree ? 0 : 50;
@@ -289,6 +183,7 @@ void pm_sim_destroy(pm_sim *s)
     free(s->scratch);
     free(s->iscratch);
     free_nodal(&s->nd);
+    pm_contact_destroy(s->contact);
     pm_grid_free(&s->grid);
     free(s);
 }
@@ -372,22 +267,6 @@ void pm_sim_sort_particles(pm_sim *s)
     }
     if (!sorted)
         pm_particles_permute(p, s->perm, s->scratch, s->iscratch);
-}
-
-void pm_sim_update_constraints(pm_sim *s)
-{
-    pm_nodal *nd = &s->nd;
-    for (size_t k = 0; k < nd->n_timed; k++) {
-        struct pm_timed_bc *t = &nd->timed[k];
-        if (t->done || s->t < t->until * (1 - 1e-12))
-            continue;
-        const pm_node_set *set = &s->grid.sets[t->set];
-        for (size_t i = 0; i < set->n; i++)
-            for (int d = 0; d < 2; d++)
-                if (t->dirs & (1u << d))
-                    nd->vfix[2 * set->nodes[i] + d] = 0.0;
-        t->done = 1;
-    }
 }
 
 int pm_sim_volumes_from_positions(pm_sim *s)

@@ -1,0 +1,263 @@
+/* Contact surfaces from the case, their detection, their forces, and the implicit entry (contact.h). */
+#include "contact/contact.h"
+
+#include "pmech/error.h"
+#include "solver/boundary.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int pm_contact_new(size_t n_nodes, pm_contact **out)
+{
+    *out = calloc(1, sizeof **out);
+    if (!*out)
+        return pm_error_set(PM_ENOMEM, "out of memory for the contact surfaces");
+    (*out)->n_nodes = n_nodes;
+    return PM_OK;
+}
+
+void pm_contact_destroy(pm_contact *ct)
+{
+    if (!ct)
+        return;
+    free(ct->surface);
+    free(ct->node);
+    free(ct);
+}
+
+static int add_surface(pm_contact *ct, size_t more_nodes, pm_contact_surface **out)
+{
+    pm_contact_surface *s = realloc(ct->surface, (ct->n_surfaces + 1) * sizeof *s);
+    if (!s)
+        return pm_error_set(PM_ENOMEM, "out of memory for the contact surfaces");
+    ct->surface = s;
+    if (more_nodes) {
+        pm_contact_node *n = realloc(ct->node, (ct->cap + more_nodes) * sizeof *n);
+        if (!n)
+            return pm_error_set(PM_ENOMEM, "out of memory for friction nodes");
+        ct->node = n;
+        ct->cap += more_nodes;
+    }
+    *out = &ct->surface[ct->n_surfaces];
+    memset(*out, 0, sizeof **out);
+    return (int)ct->n_surfaces++;
+}
+
+int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, const double normal[PM_DIM], double mu,
+                            pm_contact_law law, long bc)
+{
+    pm_contact_surface *sf = NULL;
+    const int k = add_surface(ct, n, &sf);
+    if (k < 0)
+        return k;
+    sf->kind = PM_CONTACT_NODE_SET;
+    sf->law = law;
+    sf->mu = mu;
+    sf->bc = bc;
+    sf->axis = -1;
+    for (int d = 0; d < PM_DIM; d++)
+        sf->normal[d] = normal[d];
+    /* node-set entries come first; the walls' entries after them are found again by every detection */
+    if (ct->n_node > ct->n_fixed)
+        ct->n_node = ct->n_fixed;
+    sf->first = ct->n_fixed;
+    sf->n = n;
+    for (size_t i = 0; i < n; i++) {
+        pm_contact_node *cn = &ct->node[ct->n_fixed++];
+        cn->node = nodes[i];
+        cn->surface = k;
+        for (int d = 0; d < PM_DIM; d++)
+            cn->normal[d] = normal[d];
+        cn->mu = mu;
+    }
+    ct->n_node = ct->n_fixed;
+    return k;
+}
+
+int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double normal[PM_DIM], double mu,
+                        pm_contact_law law, long bc, int guard)
+{
+    pm_contact_surface *sf = NULL;
+    const int k = add_surface(ct, ct->n_nodes, &sf); /* room for every node: the list never grows in a step */
+    if (k < 0)
+        return k;
+    sf->kind = PM_CONTACT_WALL;
+    sf->law = law;
+    sf->mu = mu;
+    sf->bc = bc;
+    sf->guard = guard;
+    sf->axis = axis;
+    sf->value = value;
+    for (int d = 0; d < PM_DIM; d++)
+        sf->normal[d] = normal[d];
+    return k;
+}
+
+static int side_of(const char *name, int *axis, int *hi)
+{
+    static const char *const sides[4] = {"x_min", "x_max", "y_min", "y_max"};
+    for (int k = 0; k < 4; k++)
+        if (strcmp(name, sides[k]) == 0) {
+            *axis = k / 2;
+            *hi = k % 2;
+            return 1;
+        }
+    return 0;
+}
+
+/* A `fixed` condition on a grid side that holds the side's normal component: in MPM every grid node
+ * on the side is held; meshfree nodes that reach the side later (material spreading over a base) are
+ * stopped there by a guard wall that sticks when the tangent is held too and slides freely
+ * otherwise; the nodes on it at t = 0 keep their condition as well. */
+static int side_wall(const pm_case_bc *bc, int *axis, int *hi, double *mu)
+{
+    if (bc->type != PM_BC_FIXED || bc->line_axis >= 0 || !side_of(bc->boundary, axis, hi) ||
+        !(bc->dirs & (1u << *axis)))
+        return 0;
+    *mu = (bc->dirs & (1u << (1 - *axis))) ? INFINITY : 0.0;
+    return 1;
+}
+
+/* MPM: a friction condition holds the grid nodes of its side or line from t = 0 on. */
+static int node_set_surfaces(pm_contact *ct, const pm_case *c, pm_grid *g)
+{
+    for (size_t b = 0; b < c->n_bcs; b++) {
+        const pm_case_bc *bc = &c->bcs[b];
+        if (bc->type != PM_BC_FRICTION)
+            continue;
+        const pm_node_set *set;
+        pm_check(pm_bc_node_set(c, b, g, &set));
+        int given = 0;
+        for (int d = 0; d < PM_DIM; d++)
+            given |= set->normal[d] != 0;
+        if (!given)
+            return pm_error_set(PM_EINPUT,
+                                "%s: boundary_conditions[%zu]: friction needs a grid side (x_min, x_max, "
+                                "y_min, y_max) or a line with an outward \"normal\"",
+                                c->file, b);
+        const int k = pm_contact_add_node_set(ct, set->n, set->nodes, set->normal, bc->coefficient,
+                                              PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
+        if (k < 0)
+            return k;
+    }
+    return PM_OK;
+}
+
+/* gmm, rkpm: friction conditions, and fixed sides, as walls at the grid side or the given line. */
+static int wall_surfaces(pm_contact *ct, const pm_case *c, const pm_grid *frame)
+{
+    for (size_t b = 0; b < c->n_bcs; b++) {
+        const pm_case_bc *bc = &c->bcs[b];
+        int axis, hi, k;
+        double mu, normal[PM_DIM] = {0};
+        if (side_wall(bc, &axis, &hi, &mu)) {
+            normal[axis] = hi ? 1.0 : -1.0;
+            k = pm_contact_add_wall(ct, axis, hi ? frame->hi[axis] : frame->lo[axis], normal, mu,
+                                    PM_CONTACT_LAW_NODAL_COULOMB, (long)b, 1);
+            if (k < 0)
+                return k;
+            continue;
+        }
+        if (bc->type != PM_BC_FRICTION)
+            continue;
+        double value;
+        if (bc->line_axis >= 0) {
+            axis = bc->line_axis;
+            value = bc->line_value;
+            for (int d = 0; d < PM_DIM; d++)
+                normal[d] = bc->line_normal[d];
+        } else if (side_of(bc->boundary, &axis, &hi)) {
+            value = hi ? frame->hi[axis] : frame->lo[axis];
+            normal[axis] = hi ? 1.0 : -1.0;
+        } else {
+            return pm_error_set(PM_EINPUT,
+                                "%s: boundary_conditions[%zu].boundary: with method gmm or rkpm, friction needs a "
+                                "grid side (x_min, x_max, y_min, y_max) or a line, not '%s'",
+                                c->file, b, bc->boundary);
+        }
+        if (normal[axis] == 0)
+            return pm_error_set(PM_EINPUT,
+                                "%s: boundary_conditions[%zu]: a friction line of a meshfree run needs a \"normal\" "
+                                "along its axis",
+                                c->file, b);
+        k = pm_contact_add_wall(ct, axis, value, normal, bc->coefficient, PM_CONTACT_LAW_NODAL_COULOMB, (long)b, 0);
+        if (k < 0)
+            return k;
+    }
+    return PM_OK;
+}
+
+int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_contact **out)
+{
+    *out = NULL;
+    pm_contact *ct;
+    pm_check(pm_contact_new(g->n_nodes, &ct));
+    const int rc = c->method == PM_METHOD_MPM ? node_set_surfaces(ct, c, g) : wall_surfaces(ct, c, frame);
+    if (rc) {
+        pm_contact_destroy(ct);
+        return rc;
+    }
+    pm_contact_detect(ct, g, 0.0);
+    *out = ct;
+    return PM_OK;
+}
+
+/* The nodes touching or past a wall, where friction acts in this step. */
+static void detect_wall(pm_contact *ct, int32_t k, const pm_grid *g)
+{
+    const pm_contact_surface *sf = &ct->surface[k];
+    const double tol = 1e-6 * g->h_min;
+    const double sgn = sf->normal[sf->axis] > 0 ? 1.0 : -1.0;
+    for (size_t I = 0; I < g->n_nodes && ct->n_node < ct->cap; I++) {
+        const double gap = sgn * (sf->value - g->x[PM_DIM * I + sf->axis]);
+        if (gap > tol)
+            continue;
+        pm_contact_node *cn = &ct->node[ct->n_node++];
+        cn->node = (int32_t)I;
+        cn->surface = k;
+        for (int d = 0; d < PM_DIM; d++)
+            cn->normal[d] = sf->axis == d ? sgn : 0.0;
+        cn->mu = sf->mu;
+    }
+}
+
+void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
+{
+    (void)t; /* the surfaces are at rest; moving obstacles will be placed at t first */
+    if (!ct)
+        return;
+    ct->n_node = ct->n_fixed; /* node sets keep their nodes; they act where they carry mass */
+    for (size_t k = 0; k < ct->n_surfaces; k++)
+        if (ct->surface[k].kind == PM_CONTACT_WALL)
+            detect_wall(ct, (int32_t)k, g);
+}
+
+int pm_contact_implicit(const pm_contact *ct, const pm_case *c, struct pm_implicit_ws *w, int want_K)
+{
+    (void)w;
+    (void)want_K;
+    for (size_t k = 0; ct && k < ct->n_surfaces; k++) {
+        const pm_contact_surface *sf = &ct->surface[k];
+        if (sf->guard)
+            continue; /* the fixed condition itself holds the side in implicit steps */
+        return pm_error_set(PM_EINPUT,
+                            "%s: boundary_conditions[%ld].type: 'friction' needs analysis.type 'explicit' "
+                            "(implicit contact is not available in this version); use 'fixed' or 'velocity'",
+                            c ? c->file : "", sf->bc);
+    }
+    return PM_OK;
+}
+
+size_t pm_contact_n_surfaces(const pm_contact *ct)
+{
+    return ct ? ct->n_surfaces : 0;
+}
+
+int pm_contact_force_of(const pm_contact *ct, size_t k, pm_contact_force *out)
+{
+    if (!ct || k >= ct->n_surfaces)
+        return pm_error_set(PM_EINPUT, "no contact surface %zu", k);
+    *out = ct->surface[k].f;
+    return PM_OK;
+}

@@ -1,0 +1,204 @@
+/*
+ * Contact: where the material meets a boundary or an obstacle, and the law that acts there. The
+ * explicit and implicit solvers and the meshfree methods (GMM, RKPM) see contact only through this
+ * interface; none of them holds a contact list of its own.
+ *
+ * Life of a contact object (one per simulation, pm_sim::contact, destroyed with it):
+ *   pm_contact_create   from the case: every `friction` condition becomes a surface; with gmm and
+ *                       rkpm a `fixed` grid side that holds its normal component becomes a guard wall
+ *                       as well (nodes that reach the side later are stopped there: it sticks when the
+ *                       tangent is held too, slides freely otherwise).
+ *   pm_contact_detect   at the start of every step (pm_sim_update_constraints): which nodes touch
+ *                       which surface at time t. A node-set surface (an MPM grid side or line) keeps
+ *                       the nodes it had at t = 0; a wall takes the nodes at or past it, so that moving
+ *                       meshfree nodes reach it as they move. Whether a node carries material is
+ *                       decided where the law acts, from that step's nodal mass.
+ *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law's impulse on every
+ *                       contact node that carries mass, then the node's prescribed components, then
+ *                       the node's acceleration again as (v - v0) / dt_acc. The resultant force of
+ *                       every surface (m dv / dt, summed over its nodes) is kept for
+ *                       pm_contact_force().
+ *   pm_contact_project_normal
+ *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
+ *                       predictor): the approaching normal velocity only, no friction impulse (that
+ *                       one has been applied to the end-of-step velocity), then the prescribed
+ *                       components.
+ *   pm_contact_implicit implicit and quasi-static steps: contact terms of the residual and tangent.
+ *                       Not yet: it refuses a friction condition with the message of the run's own
+ *                       check, and adds nothing for the guard walls (the fixed condition holds them).
+ *
+ * The nodal arrays a law works on are passed in (pm_contact_field), not taken from the simulation:
+ * today that is the one field of pm_sim::nd, and a multi-body run will call the same functions once
+ * per body field (an obstacle acts on every body; body-body contact will take two fields and the
+ * common normal of their mass gradients).
+ *
+ * Room for what comes next, without another rewrite:
+ *  - Moving rigid obstacles. A surface kind (pm_contact_kind) with its own detection: today node
+ *    sets and straight walls; to come polylines, polygons and circles, each with a prescribed
+ *    velocity v_o(t) given by a function of time (pm_contact_velocity_fn, stored per surface with
+ *    its context) and a normal per segment (the outward normal of the segment nearest the node,
+ *    found by pm_contact_detect at time t from the obstacle moved to its place at t). Detection
+ *    writes one pm_contact_node per touching node with that segment's normal and the surface index;
+ *    the law then acts on the velocity relative to the obstacle, v - v_o(t), and adds v_o back.
+ *    Today's surfaces are at rest, and their arithmetic is left exactly as it was (no relative
+ *    velocity is formed), so that results stay bit for bit those of before.
+ *  - Laws (pm_contact_law), chosen per surface: the nodal Coulomb law of Bardenhagen et al. (2000)
+ *    today; a penalty-regularised Coulomb law beside it (normal force k_n * penetration, tangential
+ *    force k_t * slip capped by mu times the normal force), which also gives the implicit residual
+ *    and tangent its terms. The apply loop switches on the surface's law per node.
+ *  - Force output: every apply starts every surface's resultant from zero and adds m dv / dt of
+ *    the law (not the prescribed components that follow it) at each of its nodes: the force the
+ *    surface exerts on the material, its normal part (positive when it pushes the material away)
+ *    and its tangential part. Nothing writes it out yet; pm_contact_force() reads it.
+ *
+ * Vectors are PM_DIM per node (v[PM_DIM * n + d]).
+ */
+#ifndef PMECH_CONTACT_H
+#define PMECH_CONTACT_H
+
+#include "pmech/case.h"
+#include "pmech/grid.h"
+#include "pmech/particles.h"
+#include "pmech/sim.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct pm_implicit_ws;
+
+/** How a surface acts on the nodes touching it. */
+typedef enum pm_contact_law {
+    /** Bardenhagen et al. (2000): the approaching normal velocity is removed and the tangential
+     *  speed reduced by mu times that change, never reversed. */
+    PM_CONTACT_LAW_NODAL_COULOMB = 0,
+    /** Penalty-regularised Coulomb (not yet: no surface is created with it). */
+    PM_CONTACT_LAW_PENALTY_COULOMB = 1
+} pm_contact_law;
+
+/** What a surface is and how its contact nodes are found. */
+typedef enum pm_contact_kind {
+    /** A fixed set of nodes with one outward normal (MPM grid side or line); they act while they
+     *  carry mass. */
+    PM_CONTACT_NODE_SET = 0,
+    /** A straight rigid wall axis = value (gmm, rkpm): the nodes at or past it, found again by every
+     *  pm_contact_detect(). */
+    PM_CONTACT_WALL = 1
+    /* to come: PM_CONTACT_POLYLINE, PM_CONTACT_POLYGON, PM_CONTACT_CIRCLE (moving obstacles) */
+} pm_contact_kind;
+
+/** Prescribed velocity of a moving obstacle at time t (for the obstacle kinds to come). */
+typedef void (*pm_contact_velocity_fn)(double t, const void *ctx, double v[PM_DIM]);
+
+/** Resultant force of one surface on the material over the last pm_contact_apply(). */
+typedef struct pm_contact_force {
+    double force[PM_DIM];   /**< sum of m dv / dt over the surface's nodes */
+    double normal;          /**< sum of -m (dv . n) / dt: positive when the surface pushes the material */
+    double tangent[PM_DIM]; /**< sum of the tangential parts m (dv - (dv . n) n) / dt */
+} pm_contact_force;
+
+/** One boundary or obstacle. */
+typedef struct pm_contact_surface {
+    pm_contact_kind kind;
+    pm_contact_law law;
+    double mu;               /**< Coulomb coefficient (INFINITY: sticks; 0: slides freely) */
+    long bc;                 /**< the case's boundary_conditions[] index it comes from (-1: none) */
+    int guard;               /**< 1: a gmm/rkpm guard wall implied by a fixed side (no implicit terms) */
+    size_t first, n;         /**< node set: its entries in pm_contact::node */
+    int axis;                /**< wall: 0 for x = value, 1 for y = value */
+    double value;            /**< wall: position */
+    double normal[PM_DIM];   /**< outward normal of the body's domain (pointing into the surface) */
+    pm_contact_velocity_fn velocity; /**< moving obstacle (NULL: at rest; none moves yet) */
+    const void *velocity_ctx;
+    pm_contact_force f;      /**< over the last apply */
+} pm_contact_surface;
+
+/** A node touching a surface. */
+typedef struct pm_contact_node {
+    int32_t node;            /**< node index of the field */
+    int32_t surface;         /**< index in pm_contact::surface */
+    double normal[PM_DIM];   /**< outward unit normal at the node */
+    double mu;               /**< friction coefficient */
+} pm_contact_node;
+
+/** The surfaces of a simulation and the nodes touching them. */
+typedef struct pm_contact {
+    size_t n_surfaces;
+    pm_contact_surface *surface;
+    size_t n_fixed;          /**< entries of node[] that belong to node-set surfaces (set at creation) */
+    size_t n_node;           /**< entries in use: node sets first, then the walls' contacts */
+    size_t cap;              /**< entries allocated: node sets plus walls x nodes, never grown in a step */
+    size_t n_nodes;          /**< nodes of the field */
+    pm_contact_node *node;
+} pm_contact;
+
+/** The nodal arrays one application works on (one body's field). */
+typedef struct pm_contact_field {
+    const double *mass;      /**< lumped nodal mass */
+    const double *v0;        /**< start-of-step velocity, PM_DIM per node: acc = (v - v0) / dt_acc */
+    double *v;               /**< the velocity the law acts on, PM_DIM per node */
+    double *acc;             /**< acceleration, PM_DIM per node (rewritten at contact nodes by apply) */
+    const uint8_t *fixed;    /**< bit d: component d prescribed */
+    const double *vfix;      /**< prescribed velocity, PM_DIM per node */
+    double mass_floor;       /**< a node carries material when its mass exceeds this */
+} pm_contact_field;
+
+/** The simulation's one field, with @p v as the velocity to act on. */
+static inline pm_contact_field pm_contact_field_of(const pm_nodal *nd, double *v, double mass_floor)
+{
+    pm_contact_field f = {nd->mass, nd->vel, v, nd->acc, nd->fixed, nd->vfix, mass_floor};
+    return f;
+}
+
+/**
+ * Surfaces of the case's conditions (see the top). MPM node sets are taken from @p g (a line
+ * condition adds its set to it); walls take a grid side's position from @p frame (the case's grid,
+ * which frames the meshfree nodes). The first detection (t = 0) is done.
+ * @return PM_OK, PM_EINPUT naming the condition, PM_ENOMEM
+ */
+int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_contact **out);
+
+/** An empty contact object for a field of @p n_nodes nodes (surfaces are added to it). */
+int pm_contact_new(size_t n_nodes, pm_contact **out);
+
+/** Add a node-set surface; its nodes touch it from now on. @return its index, or a negative status */
+int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, const double normal[PM_DIM], double mu,
+                            pm_contact_law law, long bc);
+
+/** Add a wall axis = value; detection finds its nodes. @return its index, or a negative status */
+int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double normal[PM_DIM], double mu,
+                        pm_contact_law law, long bc, int guard);
+
+/** Free (NULL is fine). */
+void pm_contact_destroy(pm_contact *ct);
+
+/** Find the nodes touching every surface at time @p t, from the node positions of @p g. */
+void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t);
+
+/**
+ * Explicit steps: the law at every contact node of @p f that carries mass, then its prescribed
+ * components, then acc = (v - v0) / dt_acc there; the surfaces' forces are m dv / dt.
+ */
+void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc);
+
+/** Explicit steps, re-projected velocities: remove the approaching normal velocity at every contact
+ *  node of @p f, then its prescribed components (no mass test, no impulse, no force). */
+void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f);
+
+/**
+ * Implicit steps: contact terms of the residual and tangent of @p w. Not yet: PM_EINPUT with the
+ * run's refusal message when a surface comes from a friction condition; PM_OK (nothing added) when
+ * there is none.
+ */
+int pm_contact_implicit(const pm_contact *ct, const pm_case *c, struct pm_implicit_ws *w, int want_K);
+
+/** Surfaces (boundaries and obstacles) of @p ct (0 for NULL). */
+size_t pm_contact_n_surfaces(const pm_contact *ct);
+
+/** Resultant force of surface @p k over the last apply. @return PM_OK, PM_EINPUT for no such surface */
+int pm_contact_force_of(const pm_contact *ct, size_t k, pm_contact_force *out);
+
+/** The laws on one node's velocity @p v (normal: outward unit normal). Return 1 when they acted. */
+int pm_contact_nodal_coulomb(const double normal[PM_DIM], double mu, double v[PM_DIM]);
+int pm_contact_normal_only(const double normal[PM_DIM], double v[PM_DIM]);
+
+#endif

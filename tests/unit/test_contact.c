@@ -1,0 +1,300 @@
+/* The contact module: the nodal Coulomb law of Bardenhagen et al. (2000) on one node, the force it
+ * reports, the normal-only projection, the implicit refusal, and the surfaces and contact nodes a case
+ * sets up (MPM grid side and line, GMM walls). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "contact/contact.h"
+#include "pmech/error.h"
+#include "pmech/sim.h"
+
+#define NEAR(a, b) assert_true(fabs((a) - (b)) <= 1e-12 * (1 + fabs(b)))
+
+/* One node of mass m on a surface with outward normal (0, -1) (a floor), coefficient mu. */
+typedef struct one_node {
+    pm_contact *ct;
+    double mass, v0[PM_DIM], v[PM_DIM], acc[PM_DIM], vfix[PM_DIM];
+    uint8_t fixed;
+} one_node;
+
+static void one_node_init(one_node *o, double mu, double vx, double vy)
+{
+    memset(o, 0, sizeof *o);
+    const int32_t node = 0;
+    const double n[PM_DIM] = {0.0, -1.0};
+    assert_int_equal(pm_contact_new(1, &o->ct), PM_OK);
+    assert_int_equal(pm_contact_add_node_set(o->ct, 1, &node, n, mu, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    o->mass = 2.0;
+    o->v[0] = vx;
+    o->v[1] = vy;
+}
+
+static pm_contact_field one_node_field(one_node *o)
+{
+    pm_contact_field f = {&o->mass, o->v0, o->v, o->acc, &o->fixed, o->vfix, 0.0};
+    return f;
+}
+
+static void law_removes_approach_and_cuts_slip(void **st)
+{
+    (void)st;
+    one_node o;
+    one_node_init(&o, 0.5, 3.0, -1.0); /* approaching at 1, sliding at 3 */
+    o.v0[0] = 1.0;
+    const double dt = 0.01;
+    pm_contact_apply(o.ct, one_node_field(&o), dt, dt);
+    NEAR(o.v[1], 0.0);                 /* the approaching velocity is gone */
+    NEAR(o.v[0], 3.0 - 0.5 * 1.0);     /* slip reduced by mu * v_n */
+    NEAR(o.acc[0], (o.v[0] - o.v0[0]) / dt);
+    NEAR(o.acc[1], (o.v[1] - o.v0[1]) / dt);
+    /* the force on the material is m dv / dt: the impulse the law applied over the step */
+    pm_contact_force f;
+    assert_int_equal(pm_contact_force_of(o.ct, 0, &f), PM_OK);
+    NEAR(f.force[0], 2.0 * (2.5 - 3.0) / dt);
+    NEAR(f.force[1], 2.0 * (0.0 - -1.0) / dt);
+    NEAR(f.normal, 2.0 * 1.0 / dt);    /* the floor pushes up */
+    NEAR(f.tangent[0], f.force[0]);
+    NEAR(f.tangent[1], 0.0);
+    /* the next apply starts the resultant again */
+    pm_contact_apply(o.ct, one_node_field(&o), dt, dt);
+    assert_int_equal(pm_contact_force_of(o.ct, 0, &f), PM_OK);
+    NEAR(f.force[0], 0.0);
+    NEAR(f.normal, 0.0);
+    assert_int_equal(pm_contact_force_of(o.ct, 1, &f), PM_EINPUT);
+    pm_contact_destroy(o.ct);
+}
+
+static void law_never_reverses_slip(void **st)
+{
+    (void)st;
+    one_node o;
+    one_node_init(&o, 0.5, 0.2, -1.0); /* mu * v_n = 0.5 exceeds the slip 0.2: it sticks */
+    pm_contact_apply(o.ct, one_node_field(&o), 1e-3, 1e-3);
+    assert_true(o.v[0] == 0.0 && o.v[1] == 0.0);
+    pm_contact_destroy(o.ct);
+    one_node_init(&o, 0.5, -0.2, -1.0);
+    pm_contact_apply(o.ct, one_node_field(&o), 1e-3, 1e-3);
+    assert_true(o.v[0] == 0.0 && o.v[1] == 0.0);
+    pm_contact_destroy(o.ct);
+    /* sticking coefficient (fixed sides of meshfree runs) */
+    one_node_init(&o, INFINITY, 5.0, -1e-3);
+    pm_contact_apply(o.ct, one_node_field(&o), 1e-3, 1e-3);
+    assert_true(o.v[0] == 0.0 && o.v[1] == 0.0);
+    pm_contact_destroy(o.ct);
+}
+
+static void separating_and_massless_untouched(void **st)
+{
+    (void)st;
+    one_node o;
+    one_node_init(&o, 0.5, 3.0, 0.5); /* lifting off */
+    pm_contact_apply(o.ct, one_node_field(&o), 1e-3, 1e-3);
+    assert_true(o.v[0] == 3.0 && o.v[1] == 0.5);
+    pm_contact_force f;
+    assert_int_equal(pm_contact_force_of(o.ct, 0, &f), PM_OK);
+    assert_true(f.force[0] == 0.0 && f.force[1] == 0.0 && f.normal == 0.0);
+    /* law function alone: separating returns 0 and leaves v */
+    const double n[PM_DIM] = {0.0, -1.0};
+    double v[PM_DIM] = {1.0, 0.0};
+    assert_int_equal(pm_contact_nodal_coulomb(n, 0.3, v), 0);
+    assert_true(v[0] == 1.0 && v[1] == 0.0);
+    pm_contact_destroy(o.ct);
+    /* a node that carries no mass is not in contact */
+    one_node_init(&o, 0.5, 3.0, -1.0);
+    o.mass = 0.0;
+    pm_contact_apply(o.ct, one_node_field(&o), 1e-3, 1e-3);
+    assert_true(o.v[0] == 3.0 && o.v[1] == -1.0);
+    pm_contact_destroy(o.ct);
+}
+
+static void prescribed_components_win(void **st)
+{
+    (void)st;
+    one_node o;
+    one_node_init(&o, 0.1, 3.0, -1.0);
+    o.fixed = 1u; /* x held at 0.25 */
+    o.vfix[0] = 0.25;
+    pm_contact_apply(o.ct, one_node_field(&o), 0.5, 0.25);
+    assert_true(o.v[0] == 0.25 && o.v[1] == 0.0);
+    NEAR(o.acc[0], 0.25 / 0.25); /* acc from dt_acc, force from dt */
+    pm_contact_force f;
+    assert_int_equal(pm_contact_force_of(o.ct, 0, &f), PM_OK);
+    NEAR(f.force[0], 2.0 * (2.9 - 3.0) / 0.5); /* the law's impulse, not the prescribed one */
+    pm_contact_destroy(o.ct);
+}
+
+static void projection_is_normal_only(void **st)
+{
+    (void)st;
+    one_node o;
+    one_node_init(&o, 0.5, 3.0, -1.0);
+    o.mass = 0.0; /* the projection does not look at the mass */
+    pm_contact_project_normal(o.ct, one_node_field(&o));
+    assert_true(o.v[0] == 3.0 && o.v[1] == 0.0);
+    o.v[1] = 0.75;
+    pm_contact_project_normal(o.ct, one_node_field(&o));
+    assert_true(o.v[0] == 3.0 && o.v[1] == 0.75);
+    pm_contact_destroy(o.ct);
+}
+
+static void implicit_not_yet(void **st)
+{
+    (void)st;
+    one_node o;
+    one_node_init(&o, 0.5, 0.0, 0.0);
+    assert_int_equal(pm_contact_implicit(o.ct, NULL, NULL, 1), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "implicit contact is not available"));
+    pm_contact_destroy(o.ct);
+    pm_contact *empty;
+    assert_int_equal(pm_contact_new(4, &empty), PM_OK);
+    assert_int_equal(pm_contact_implicit(empty, NULL, NULL, 1), PM_OK);
+    pm_contact_destroy(empty);
+    assert_int_equal(pm_contact_implicit(NULL, NULL, NULL, 1), PM_OK);
+}
+
+/* A 4 x 2 quad grid over [0, 1] x [0, 0.5] with a block on its floor and the given conditions. */
+static pm_sim *small_sim(pm_case *c, const char *method, const char *shape, const char *bcs)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, \"method\": \"%s\", \"shape_function\": \"%s\","
+             "  \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": 0.01, \"dt\": 1e-4,"
+             "                \"gravity\": [0, -9.81] },"
+             "  \"grid\": { \"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [1.0, 0.5], \"cells\": [4, 2] },"
+             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,"
+             "                   \"youngs_modulus\": 1e6, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\","
+             "               \"shape\": { \"type\": \"rectangle\", \"min\": [0.0, 0.0], \"max\": [0.75, 0.25] } } ],"
+             "  \"boundary_conditions\": [ %s ] }",
+             method, shape, bcs);
+    assert_int_equal(pm_case_load_buffer(text, strlen(text), "contact.json", c), PM_OK);
+    pm_sim *s = NULL;
+    int rc = pm_sim_create(c, &s, 1);
+    if (rc)
+        fail_msg("%s", pm_error_message());
+    return s;
+}
+
+static void mpm_friction_side_and_line(void **st)
+{
+    (void)st;
+    pm_case c;
+    pm_sim *s = small_sim(&c, "mpm", "linear",
+                          "{ \"type\": \"friction\", \"boundary\": \"y_min\", \"coefficient\": 0.3 },"
+                          "{ \"type\": \"friction\", \"boundary\": { \"x\": 1.0, \"from\": 0.1, \"to\": 0.5,"
+                          "  \"normal\": [1, 0] }, \"coefficient\": 0.7 },"
+                          "{ \"type\": \"fixed\", \"boundary\": \"x_min\", \"directions\": [\"x\"] }");
+    const pm_contact *ct = s->contact;
+    assert_non_null(ct);
+    assert_int_equal(pm_contact_n_surfaces(ct), 2);
+    assert_int_equal(ct->surface[0].kind, PM_CONTACT_NODE_SET);
+    assert_int_equal(ct->surface[0].bc, 0);
+    assert_int_equal(ct->surface[1].bc, 1);
+    /* y_min: the 5 nodes of the bottom row, normal (0, -1); x = 1 from y = 0.1 to 0.5: 2 nodes */
+    assert_int_equal(ct->n_node, 5 + 2);
+    for (size_t k = 0; k < 5; k++) {
+        const pm_contact_node *cn = &ct->node[k];
+        assert_true(s->grid.x[PM_DIM * cn->node + 1] == 0.0);
+        assert_true(cn->normal[0] == 0.0 && cn->normal[1] == -1.0 && cn->mu == 0.3 && cn->surface == 0);
+    }
+    for (size_t k = 5; k < 7; k++) {
+        const pm_contact_node *cn = &ct->node[k];
+        const double *x = s->grid.x + PM_DIM * cn->node;
+        assert_true(x[0] == 1.0 && x[1] > 0.1 && x[1] <= 0.5);
+        assert_true(cn->normal[0] == 1.0 && cn->normal[1] == 0.0 && cn->mu == 0.7 && cn->surface == 1);
+    }
+    /* the fixed side is a prescribed condition, no surface */
+    assert_true(s->nd.fixed[0] & 1u);
+    /* a step under gravity: the floor pushes the block up, never pulls */
+    assert_int_equal(pm_explicit_step(s, 1e-4), PM_OK);
+    pm_contact_force f;
+    assert_int_equal(pm_contact_force_of(ct, 0, &f), PM_OK);
+    assert_true(f.normal > 0.0);
+    NEAR(f.force[1], f.normal);
+    /* implicit: the refusal of the run's own check, naming the condition */
+    assert_int_equal(pm_contact_implicit(ct, &c, NULL, 1), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "contact.json: boundary_conditions[0].type: 'friction'"));
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+}
+
+static void mpm_friction_needs_a_normal(void **st)
+{
+    (void)st;
+    pm_case c;
+    char text[1024];
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01 },"
+             "  \"grid\": { \"type\": \"rectangle\", \"origin\": [0, 0], \"size\": [1.0, 0.5], \"cells\": [4, 2] },"
+             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,"
+             "                   \"youngs_modulus\": 1e6, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\","
+             "               \"shape\": { \"type\": \"rectangle\", \"min\": [0.0, 0.0], \"max\": [0.75, 0.25] } } ],"
+             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": { \"y\": 0.25 },"
+             "                               \"coefficient\": 0.3 } ] }");
+    assert_int_equal(pm_case_load_buffer(text, strlen(text), "contact.json", &c), PM_OK);
+    pm_sim *s = NULL;
+    assert_int_equal(pm_sim_create(&c, &s, 1), PM_EINPUT);
+    assert_null(s);
+    assert_non_null(strstr(pm_error_message(), "friction needs a grid side"));
+    pm_case_free(&c);
+}
+
+static void gmm_walls(void **st)
+{
+    (void)st;
+    pm_case c;
+    pm_sim *s = small_sim(&c, "gmm", "lme",
+                          "{ \"type\": \"fixed\", \"boundary\": \"x_min\", \"directions\": [\"x\"] },"
+                          "{ \"type\": \"friction\", \"boundary\": \"y_min\", \"coefficient\": 0.4 }");
+    const pm_contact *ct = s->contact;
+    assert_int_equal(pm_contact_n_surfaces(ct), 2);
+    /* the fixed side holding x is a guard wall that slides freely; the friction side a wall */
+    assert_int_equal(ct->surface[0].kind, PM_CONTACT_WALL);
+    assert_true(ct->surface[0].guard && ct->surface[0].mu == 0.0 && ct->surface[0].axis == 0);
+    assert_true(ct->surface[1].kind == PM_CONTACT_WALL && !ct->surface[1].guard && ct->surface[1].axis == 1);
+    /* GMM nodes: the corners of the 3 x 1 cells the block fills; 2 on x = 0, 4 on y = 0 */
+    assert_int_equal(s->grid.n_nodes, 8);
+    size_t on_left = 0, on_floor = 0;
+    for (size_t k = 0; k < ct->n_node; k++) {
+        const pm_contact_node *cn = &ct->node[k];
+        const double *x = s->grid.x + PM_DIM * cn->node;
+        if (cn->surface == 0) {
+            on_left++;
+            assert_true(x[0] == 0.0 && cn->normal[0] == -1.0 && cn->normal[1] == 0.0);
+        } else {
+            on_floor++;
+            assert_true(x[1] == 0.0 && cn->normal[0] == 0.0 && cn->normal[1] == -1.0 && cn->mu == 0.4);
+        }
+    }
+    assert_int_equal(on_left, 2);
+    assert_int_equal(on_floor, 4);
+    /* guard walls add no implicit terms; the friction wall is refused */
+    assert_int_equal(pm_contact_implicit(ct, &c, NULL, 1), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "boundary_conditions[1]"));
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(law_removes_approach_and_cuts_slip),
+        cmocka_unit_test(law_never_reverses_slip),
+        cmocka_unit_test(separating_and_massless_untouched),
+        cmocka_unit_test(prescribed_components_win),
+        cmocka_unit_test(projection_is_normal_only),
+        cmocka_unit_test(implicit_not_yet),
+        cmocka_unit_test(mpm_friction_side_and_line),
+        cmocka_unit_test(mpm_friction_needs_a_normal),
+        cmocka_unit_test(gmm_walls),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
