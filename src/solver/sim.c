@@ -218,7 +218,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
             goto fail;
         }
         s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
-        s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
+        s->approx->fast_linear_quad = s->approx->ops->linear_quad_fast && s->grid.structured &&
                                       s->grid.element == PM_QUAD4;
     }
     s->scatter = scatter_strategy();
