@@ -42,6 +42,8 @@ typedef struct mf_cache {
     mf_lists lists;    /* one per point */
 } mf_cache;
 
+/* The private data of a cloud kind: the kind's family, its cloud, the tuning after defaults (beta
+ * from gamma and the cloud's h) and the per-point state that connect() keeps. */
 typedef struct mf_data {
     mf_kind kind;
     pm_cloud *cloud;
@@ -63,8 +65,8 @@ typedef struct mf_list {
 /* The nodes of a candidate list within r of x, with their offsets x - x_I and squared distances:
  * what pm_cloud_gather() gives, in the same order (the list is a cell-list query of the same build),
  * without visiting cells or testing the nodes outside R_L. */
-static inline int list_gather(const pm_cloud *c, const mf_list *L, const double x[2], double r, int32_t *restrict idx,
-                       double (*restrict d)[2], double *restrict q)
+static inline int list_gather(const pm_cloud *c, const mf_list *L, const double x[2], double r,
+                              int32_t *restrict idx, double (*restrict d)[2], double *restrict q)
 {
     const double r2 = r * r, x0 = x[0], x1 = x[1];
     const double *restrict xc = c->x;
