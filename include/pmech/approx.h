@@ -26,9 +26,29 @@ typedef struct pm_stencil {
 
 typedef struct pm_approx pm_approx;
 
+/**
+ * Methods an approximation serves, the bits of pm_approx_ops::methods: bit m stands for the
+ * pm_method m of case.h (PM_METHOD_MPM = 0, GMM = 1, RKPM = 2), so `1u << c->method` tests a case.
+ */
+enum {
+    PM_APPROX_MPM = 1u << 0,   /**< grid kinds, for `method: mpm` */
+    PM_APPROX_GMM = 1u << 1,   /**< node-cloud kinds of the generalized meshfree method */
+    PM_APPROX_RKPM = 1u << 2   /**< node-cloud kinds of the reproducing kernel particle method */
+};
+
 /** Operations of an approximation; one static table per kind. */
 typedef struct pm_approx_ops {
     const char *name;  /**< the `shape_function` value, e.g. "linear" */
+    unsigned methods;  /**< PM_APPROX_* bits of the methods that may use this kind */
+    /**
+     * 1: the functions take the nodal values at the nodes where essential conditions are imposed
+     * (Kronecker delta there: linear; lme on the boundary of its hull), so those values can be set
+     * directly; 0: they only approximate them (mls, rk_cubic, gimp, bspline2), and a meshfree
+     * solver must transform the nodal unknowns to impose them.
+     */
+    int interpolating;
+    /** 1: on a structured quad4 grid pm_linear_quad_eval() gives exactly this kind's functions. */
+    int linear_quad_fast;
     /**
      * Rebuild connectivity for all points (MPM: locate the cell of each point into p->cell;
      * meshfree: neighbour search). Returns PM_OK or PM_ESIM naming a particle that left the grid.
@@ -83,8 +103,45 @@ int pm_approx_create_opts(const char *name, const pm_grid *g, const pm_approx_op
 /** @brief Destroy an approximation (NULL is fine). */
 void pm_approx_destroy(pm_approx *a);
 
-/** @brief Names of all approximations, NULL-terminated (for messages and "did you mean"). */
+/** @brief Names of the grid approximations (pm_approx_create()), NULL-terminated (for messages and "did you mean"). */
 const char *const *pm_approx_names(void);
+
+/**
+ * @brief Every `shape_function` name, the grid kinds then the node-cloud kinds, each name once
+ *        (lme is both): the values a case file may give.
+ * @param out receives at most @p cap - 1 names and a terminating NULL
+ * @param cap entries of @p out (>= 1)
+ * @return the number of names written (without the NULL)
+ */
+size_t pm_approx_all_names(const char **out, size_t cap);
+
+/**
+ * @brief The `shape_function` names that method @p method serves, the method's default first
+ *        (mpm: linear, gimp, bspline2, lme; gmm: mls, lme; rkpm: rk_cubic).
+ * @param method a pm_method value (case.h)
+ * @param out receives at most @p cap - 1 names and a terminating NULL
+ * @param cap entries of @p out (>= 1)
+ * @return the number of names written (without the NULL); 0 for an unknown method
+ */
+size_t pm_approx_names_for_method(int method, const char **out, size_t cap);
+
+/**
+ * @brief Whether the kind called @p name serves method @p method (on a grid for mpm, on a node
+ *        cloud for gmm and rkpm).
+ * @param name a `shape_function` value
+ * @param method a pm_method value (case.h)
+ * @return 1 or 0 (0 also for an unknown name or method)
+ */
+int pm_approx_serves(const char *name, int method);
+
+/**
+ * @brief The ops table of kind @p name as used by method @p method (the grid lme for mpm, the
+ *        cloud lme for gmm), for asking its capabilities before anything is created.
+ * @param name a `shape_function` value
+ * @param method a pm_method value (case.h)
+ * @return the table, or NULL when the method has no kind of that name
+ */
+const pm_approx_ops *pm_approx_find(const char *name, int method);
 
 /**
  * @brief Linear shape functions of a structured quad4 cell, inline for the solvers' hot loops.

@@ -87,6 +87,14 @@ typedef struct pm_material_ops {
      */
     double (*strain_energy)(const pm_material *m, const pm_material_step *in,
                             const double *state, const double stress[6]);
+    /**
+     * Strength reduction (strength_reduction.h): divide the strength held in m->param by
+     * @p factor > 0 (cohesion c / F, friction tan(phi) / F and what goes with them), leaving
+     * m->derived to ops->init, which the caller runs next. NULL: the model has no strength the
+     * search reduces, and strength reduction leaves it as it is.
+     * Returns PM_OK, or PM_EINTERNAL when the model lacks a parameter it reduces.
+     */
+    int (*reduce_strength)(pm_material *m, double factor);
 } pm_material_ops;
 
 /** A material of a case: its model, name, density, elastic constants and parameters. */

@@ -3,8 +3,9 @@
  * @brief Meshfree shape functions on a node cloud (GMM: `mls`, `lme`; RKPM: `rk_cubic`) and the
  *        Kronecker-delta transformation that makes them interpolate at essential-boundary nodes.
  *
- * These kinds work on a pm_cloud, not on a pm_grid, so they are not in the pm_approx_create()
- * registry: create them with pm_approx_create_cloud(). The result is an ordinary pm_approx (its
+ * These kinds work on a pm_cloud, not on a pm_grid, so pm_approx_create() does not make them (they
+ * are the registry's node-cloud table, see pm_approx_names_for_method()): create them with
+ * pm_approx_create_cloud(). The result is an ordinary pm_approx (its
  * grid is NULL): connect() refreshes the cloud's cell list (pm_cloud_update()) and evaluates every
  * material point once (eval() then returns the kept stencil), keeping per point a list of nearby
  * nodes for the next neighbour search and, for lme, the last lambda as the next Newton start.

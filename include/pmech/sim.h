@@ -42,7 +42,7 @@ typedef struct pm_nodal {
 /**
  * How the parallel particle-to-grid scatters of the explicit steps keep two threads from writing one
  * node. Chosen when the simulation is created, from the environment variable PMECH_SCATTER
- * ("colour" or "buffers"; unset: colour).
+ * ("colour" or "buffers"; unset or empty: colour; anything else: pm_sim_create() fails with PM_EINPUT).
  */
 typedef enum pm_scatter {
     /** Particles sorted by cell are cut into 2 x threads blocks of whole cell rows; the even blocks

@@ -53,14 +53,26 @@ typedef struct pm_srf_result {
 } pm_srf_result;
 
 /**
- * @brief Divide the strength of @p m by @p factor (Mohr-Coulomb and Drucker-Prager; other models
- *        are copied unchanged) and recompute the model's derived constants.
+ * @brief Divide the strength of @p m by @p factor (through its model's
+ *        pm_material_ops::reduce_strength: Mohr-Coulomb and Drucker-Prager; models without one are
+ *        copied unchanged) and recompute the model's derived constants.
  * @param m the material as given
  * @param factor F > 0
  * @param out receives the reduced material (may be @p m itself)
  * @return PM_OK, or PM_EINPUT when the model rejects the reduced parameters
  */
 int pm_srf_reduce_material(const pm_material *m, double factor, pm_material *out);
+
+/**
+ * @brief Judge a trial that ran to its end time: does the slope stand? Only PM_SRF_DISPLACEMENT
+ *        can fail such a trial, when its largest displacement exceeds displacement_ratio times
+ *        @p elastic_displacement (> 0); a trial that stopped early has failed without asking.
+ * @param so the search's options (criterion, displacement_ratio)
+ * @param t the trial (max_displacement is read)
+ * @param elastic_displacement the elastic reference run's largest displacement (0: none yet)
+ * @return 1 failed, 0 stands
+ */
+int pm_srf_judge(const pm_srf_opts *so, const pm_srf_trial *t, double elastic_displacement);
 
 /**
  * @brief Run @p c once with every strength divided by @p factor and judge the run.

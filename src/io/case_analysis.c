@@ -80,7 +80,7 @@ int pm_case_check_strength_reduction(const pm_case *c)
     size_t used = 0;
     for (size_t k = 0; k < c->n_materials; k++) {
         const char *model = c->materials[k].ops->name;
-        if (!strcmp(model, "mohr_coulomb") || !strcmp(model, "drucker_prager"))
+        if (c->materials[k].ops->reduce_strength)
             return PM_OK;
         if (used + 100 < sizeof list)
             used += (size_t)snprintf(list + used, sizeof list - used, "%s\"%s\" is %s", k ? ", " : "",

@@ -26,37 +26,25 @@ int pm_case_fail(const char *file, const char *path, const char *what, const cha
     return pm_error_set(PM_EINPUT, "%s: %s: %s%s", file, path, what, detail ? detail : "");
 }
 
-/* Grid kinds for `mpm`, cloud kinds for `gmm` (mls, lme) and `rkpm` (rk_cubic); the default follows
- * the method: linear, mls, rk_cubic. */
+/* The names and which method takes which come from the approximation registry; a method's first
+ * name is its default (mpm: linear, gmm: mls, rkpm: rk_cubic). */
 static int parse_shape_function(pm_case *c, const jr_ctx *cx, json_t *root)
 {
-    static const char *const cloud_kinds[] = {"mls", "rk_cubic", NULL};
-    static const char *const gmm_kinds[] = {"mls", "lme", NULL};
-    static const char *const rkpm_kinds[] = {"rk_cubic", NULL};
-    const char *all[16];
-    int n = 0;
-    for (const char *const *k = pm_approx_names(); *k && n < 12; k++)
-        all[n++] = *k;
-    for (const char *const *k = cloud_kinds; *k; k++)
-        all[n++] = *k;
-    all[n] = NULL;
-    const char *def = c->method == PM_METHOD_GMM ? "mls" : c->method == PM_METHOD_RKPM ? "rk_cubic" : "linear";
+    const char *all[16], *ok[16];
+    pm_approx_all_names(all, sizeof all / sizeof all[0]);
+    pm_approx_names_for_method(c->method, ok, sizeof ok / sizeof ok[0]);
     int v, d = 0;
-    while (all[d] && strcmp(all[d], def) != 0)
+    while (all[d] && ok[0] && strcmp(all[d], ok[0]) != 0)
         d++;
     pm_check(jr_enum(cx, root, "shape_function", 0, all, d, &v));
     snprintf(c->shape_function, sizeof c->shape_function, "%s", all[v]);
-    const char *const *ok = c->method == PM_METHOD_GMM ? gmm_kinds : c->method == PM_METHOD_RKPM ? rkpm_kinds
-                                                                                                 : pm_approx_names();
-    for (const char *const *k = ok; *k; k++)
-        if (strcmp(*k, c->shape_function) == 0)
-            return PM_OK;
+    if (pm_approx_serves(c->shape_function, c->method))
+        return PM_OK;
     char list[256] = "";
     for (const char *const *k = ok; *k; k++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k == ok ? "" : ", ", *k);
     return pm_error_set(PM_EINPUT, "%s: shape_function: \"%s\" does not go with method '%s' (allowed: %s)", c->file,
-                        c->shape_function, c->method == PM_METHOD_GMM ? "gmm" : c->method == PM_METHOD_RKPM ? "rkpm" : "mpm",
-                        list);
+                        c->shape_function, methods[c->method], list);
 }
 
 static void split_name(pm_case *c, const char *name)

@@ -170,4 +170,5 @@ const pm_material_ops pm_drucker_prager_ops = {
     .wave_speed = pm_material_elastic_wave_speed,
     .plastic_strain = dp_eps_p,
     .strain_energy = pm_material_elastic_energy,
+    .reduce_strength = pm_reduce_coulomb_strength,
 };

@@ -190,4 +190,5 @@ const pm_material_ops pm_granular_ops = {
     .wave_speed = gr_wave_speed,
     .plastic_strain = gr_eps_p,
     .strain_energy = gr_energy,
+    .reduce_strength = NULL, /* no Coulomb strength for the search to lower */
 };

@@ -42,4 +42,5 @@ const pm_material_ops pm_linear_elastic_ops = {
     .wave_speed = pm_material_elastic_wave_speed,
     .plastic_strain = NULL,
     .strain_energy = pm_material_elastic_energy,
+    .reduce_strength = NULL,
 };

@@ -18,6 +18,13 @@ extern const pm_material_ops pm_drucker_prager_ops;
 extern const pm_material_ops pm_viscoplastic_dp_ops;
 extern const pm_material_ops pm_granular_ops;
 
+/*
+ * pm_material_ops::reduce_strength of the Coulomb-type models (mohr_coulomb, drucker_prager):
+ * c -> c / F, phi -> atan(tan(phi) / F), psi -> atan(tan(psi) / F) capped at the reduced phi,
+ * a tension_cutoff T (where the model has one and it is set) -> T / F.
+ */
+int pm_reduce_coulomb_strength(pm_material *m, double factor);
+
 /* Degrees to radians. */
 static inline double pm_deg2rad(double deg) { return deg * (M_PI / 180.0); }
 

@@ -317,4 +317,5 @@ const pm_material_ops pm_mohr_coulomb_ops = {
     .wave_speed = pm_material_elastic_wave_speed,
     .plastic_strain = mc_eps_p,
     .strain_energy = pm_material_elastic_energy,
+    .reduce_strength = pm_reduce_coulomb_strength,
 };

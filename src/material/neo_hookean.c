@@ -92,4 +92,5 @@ const pm_material_ops pm_neo_hookean_ops = {
     .wave_speed = nh_wave_speed,
     .plastic_strain = NULL,
     .strain_energy = nh_energy,
+    .reduce_strength = NULL,
 };

@@ -87,4 +87,5 @@ const pm_material_ops pm_von_mises_ops = {
     .wave_speed = pm_material_elastic_wave_speed,
     .plastic_strain = vm_eps_p,
     .strain_energy = pm_material_elastic_energy,
+    .reduce_strength = NULL, /* no Coulomb strength for the search to lower */
 };

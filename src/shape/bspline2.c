@@ -80,6 +80,9 @@ static int bspline2_eval(const pm_approx *a, const pm_particles *p, size_t ip, p
 
 const pm_approx_ops pm_approx_bspline2_ops = {
     .name = "bspline2",
+    .methods = PM_APPROX_MPM,
+    .interpolating = 0,
+    .linear_quad_fast = 0,
     .connect = pm_shape_connect_cells,
     .eval = bspline2_eval,
     .destroy = NULL,

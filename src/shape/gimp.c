@@ -124,6 +124,9 @@ static int gimp_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_st
 
 const pm_approx_ops pm_approx_gimp_ops = {
     .name = "gimp",
+    .methods = PM_APPROX_MPM,
+    .interpolating = 0,
+    .linear_quad_fast = 0,
     .connect = pm_shape_connect_cells,
     .eval = gimp_eval,
     .destroy = NULL,

@@ -74,6 +74,9 @@ static int linear_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_
 
 const pm_approx_ops pm_approx_linear_ops = {
     .name = "linear",
+    .methods = PM_APPROX_MPM,
+    .interpolating = 1,
+    .linear_quad_fast = 1,
     .connect = pm_shape_connect_cells,
     .eval = linear_eval,
     .destroy = NULL,

@@ -45,9 +45,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define LME_DEFAULT_GAMMA 1.8
-#define LME_PRIOR_TOL 1e-6
-#define LME_MAX_CAND 1024
 #define LME_MAX_IT 100
 #define LME_TAYLOR_MAX 1e-2 /* largest exponent change of a Newton step taken without exp() */
 
@@ -123,11 +120,11 @@ static int lme_init(pm_approx *a)
     if (!d)
         return pm_error_set(PM_ENOMEM, "out of memory");
     a->data = d;
-    d->gamma = a->opts.lme_gamma > 0 ? a->opts.lme_gamma : LME_DEFAULT_GAMMA;
+    d->gamma = a->opts.lme_gamma > 0 ? a->opts.lme_gamma : PM_LME_DEFAULT_GAMMA;
     d->h = grid_spacing(g);
     d->beta = d->gamma / (d->h * d->h);
     d->R = a->opts.support_radius > 0 ? a->opts.support_radius
-                                      : fmax(d->h * sqrt(-log(LME_PRIOR_TOL) / d->gamma), 1.5 * d->h);
+                                      : fmax(d->h * sqrt(-log(PM_LME_PRIOR_TOL) / d->gamma), 1.5 * d->h);
     d->bin = 0.5 * d->R;
     for (int k = 0; k < 2; k++) {
         d->lo[k] = g->lo[k];
@@ -352,8 +349,8 @@ int pm_lme_solve(int n, const double (*d)[2], double beta, double tol, double la
  * The nodes within R of x (the PM_STENCIL_MAX nearest when more), their indices into cand and
  * squared distances into dist2; returns their count.
  */
-static int neighbours(const lme_data *ld, const double x[2], int32_t cand[LME_MAX_CAND],
-                      double dist2[LME_MAX_CAND])
+static int neighbours(const lme_data *ld, const double x[2], int32_t cand[PM_SHAPE_CAND_MAX],
+                      double dist2[PM_SHAPE_CAND_MAX])
 {
     int nc = 0;
     const double R2 = ld->R * ld->R;
@@ -370,7 +367,7 @@ static int neighbours(const lme_data *ld, const double x[2], int32_t cand[LME_MA
             const size_t b = (size_t)jy * ld->nb[0] + jx;
             for (int32_t k = ld->start[b]; k < ld->start[b + 1]; k++) {
                 const double dx = x[0] - ld->xb[2 * k], dy = x[1] - ld->xb[2 * k + 1], r2 = dx * dx + dy * dy;
-                if (r2 > R2 || nc == LME_MAX_CAND)
+                if (r2 > R2 || nc == PM_SHAPE_CAND_MAX)
                     continue;
                 cand[nc] = ld->nodes[k];
                 dist2[nc++] = r2;
@@ -405,8 +402,8 @@ static int lme_connect(pm_approx *a, pm_particles *p)
         return PM_OK;
     int widest = 0;
     for (size_t i = 0; i < p->n; i++) {
-        int32_t cand[LME_MAX_CAND];
-        double dist2[LME_MAX_CAND];
+        int32_t cand[PM_SHAPE_CAND_MAX];
+        double dist2[PM_SHAPE_CAND_MAX];
         int nc = neighbours(ld, p->x + 2 * i, cand, dist2);
         widest = nc > widest ? nc : widest;
     }
@@ -481,8 +478,8 @@ static int lme_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_ste
         memcpy(s->dN, c->dN + o, (size_t)n * sizeof *s->dN);
         return PM_OK;
     }
-    int32_t cand[LME_MAX_CAND];
-    double dist2[LME_MAX_CAND];
+    int32_t cand[PM_SHAPE_CAND_MAX];
+    double dist2[PM_SHAPE_CAND_MAX];
     const int nc = neighbours(ld, x, cand, dist2);
     if (nc < 3)
         return pm_error_set(PM_ESIM, "lme: particle %zu at (%g, %g) has only %d nodes within the support radius %g",
@@ -527,6 +524,9 @@ static int lme_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_ste
 
 const pm_approx_ops pm_approx_lme_ops = {
     .name = "lme",
+    .methods = PM_APPROX_MPM,
+    .interpolating = 1,
+    .linear_quad_fast = 0,
     .connect = lme_connect,
     .eval = lme_eval,
     .destroy = lme_destroy,

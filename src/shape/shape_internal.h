@@ -4,6 +4,37 @@
 
 #include "pmech/approx.h"
 #include "pmech/cloud.h"
+#include "pmech/meshfree.h"
+
+/* Defaults of the LME kinds, on the grid (lme.c) and on a node cloud (lme_cloud.c) alike. */
+#define PM_LME_DEFAULT_GAMMA 1.8 /* gamma = beta h^2 (Arroyo & Ortiz's usual choice) */
+#define PM_LME_PRIOR_TOL 1e-6    /* the default support ends where the Gaussian prior falls to this */
+/* Candidates of one neighbour query; more nodes than this in a support is a mis-set radius anyway. */
+#define PM_SHAPE_CAND_MAX 1024
+
+/**
+ * A kind that works on a node cloud (pm_approx_create_cloud()): its ops and the set-up of its
+ * private data. init(a, cloud, opts) gets @p a with ops set and fills data and opts, or returns
+ * PM_EINPUT (a bad option) / PM_ENOMEM leaving a->data NULL.
+ */
+typedef struct pm_cloud_kind {
+    const pm_approx_ops *ops;
+    int (*init)(pm_approx *a, pm_cloud *cloud, const pm_meshfree_opts *opts);
+} pm_cloud_kind;
+
+/** The registry entry of a node-cloud kind, or NULL for a grid kind. */
+const pm_cloud_kind *pm_cloud_kind_of(const pm_approx_ops *ops);
+
+/* The node-cloud kinds (meshfree.c), collected by the registry in approx.c. */
+extern const pm_approx_ops pm_approx_mls_ops;
+extern const pm_approx_ops pm_approx_lme_cloud_ops;
+extern const pm_approx_ops pm_approx_rk_cubic_ops;
+/** Set up mls on @p cloud (pm_cloud_kind::init). */
+int pm_mf_init_mls(pm_approx *a, pm_cloud *cloud, const pm_meshfree_opts *opts);
+/** Set up lme on @p cloud (pm_cloud_kind::init). */
+int pm_mf_init_lme(pm_approx *a, pm_cloud *cloud, const pm_meshfree_opts *opts);
+/** Set up rk_cubic on @p cloud (pm_cloud_kind::init). */
+int pm_mf_init_rk(pm_approx *a, pm_cloud *cloud, const pm_meshfree_opts *opts);
 
 /**
  * Locate the background cell of every particle into p->cell (in parallel with a->n_threads),

@@ -106,7 +106,10 @@ int pm_mf_create(pm_sim *s, int n_threads)
     mf->background = s->grid;
     memset(&s->grid, 0, sizeof s->grid);
     mf->rkpm = c->method == PM_METHOD_RKPM;
-    mf->transform = strcmp(c->shape_function, "lme") != 0;
+    const pm_approx_ops *kind = pm_approx_find(c->shape_function, c->method);
+    if (!kind)
+        return pm_error_set(PM_EINPUT, "%s: shape_function '%s' does not serve this method", c->file, c->shape_function);
+    mf->transform = !kind->interpolating;
     const pm_grid *bg = &mf->background;
     const pm_particles *p = &s->p;
     if (p->n == 0)

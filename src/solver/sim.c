@@ -40,11 +40,21 @@ static int build_grid(const pm_case *c, pm_grid *g)
     return PM_OK;
 }
 
-/* PMECH_SCATTER picks the strategy so that both can be measured and compared on the same build. */
-static pm_scatter scatter_strategy(void)
+/* PMECH_SCATTER picks the strategy so that both can be measured and compared on the same build. A
+ * misspelt value is an error rather than the default: a measurement would otherwise silently time
+ * the other strategy. Unset or empty means "colour". */
+static int scatter_strategy(pm_scatter *out)
 {
     const char *e = getenv("PMECH_SCATTER");
-    return e && strcmp(e, "buffers") == 0 ? PM_SCATTER_BUFFERS : PM_SCATTER_COLOUR;
+    *out = PM_SCATTER_COLOUR;
+    if (!e || !*e || strcmp(e, "colour") == 0)
+        return PM_OK;
+    if (strcmp(e, "buffers") == 0) {
+        *out = PM_SCATTER_BUFFERS;
+        return PM_OK;
+    }
+    return pm_error_set(PM_EINPUT, "environment variable PMECH_SCATTER=\"%s\": allowed values are \"colour\" and "
+                        "\"buffers\"", e);
 }
 
 /* Per-thread copies of the nodal arrays only where a scatter may need them: colouring needs none. */
@@ -110,10 +120,11 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
             goto fail;
         }
         s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
-        s->approx->fast_linear_quad = strcmp(c->shape_function, "linear") == 0 && s->grid.structured &&
+        s->approx->fast_linear_quad = s->approx->ops->linear_quad_fast && s->grid.structured &&
                                       s->grid.element == PM_QUAD4;
     }
-    s->scatter = scatter_strategy();
+    if ((rc = scatter_strategy(&s->scatter)) != 0)
+        goto fail;
     if (meshfree || !s->approx->fast_linear_quad)
         s->scatter = PM_SCATTER_BUFFERS; /* the row blocks need a structured grid's rows and 2 x 2 stencils */
     s->blocks = malloc((2 * (size_t)(n_threads < 1 ? 1 : n_threads) + 1) * sizeof(size_t));

@@ -14,14 +14,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The models that say what their strength is (pm_material_ops::reduce_strength). */
 static int is_reducible(const pm_material *m)
 {
-    return !strcmp(m->ops->name, "mohr_coulomb") || !strcmp(m->ops->name, "drucker_prager");
-}
-
-static double reduce_angle(double deg, double factor)
-{
-    return atan(tan(deg * M_PI / 180.0) / factor) * 180.0 / M_PI;
+    return m->ops->reduce_strength != NULL;
 }
 
 int pm_srf_reduce_material(const pm_material *m, double factor, pm_material *out)
@@ -32,19 +28,7 @@ int pm_srf_reduce_material(const pm_material *m, double factor, pm_material *out
         return PM_OK;
     if (!(factor > 0) || !isfinite(factor))
         return pm_error_set(PM_EINPUT, "strength reduction factor %g: must be a number > 0", factor);
-    const int ic = pm_material_param_index(m->ops, "cohesion");
-    const int iphi = pm_material_param_index(m->ops, "friction_angle");
-    const int ipsi = pm_material_param_index(m->ops, "dilatancy_angle");
-    const int it = pm_material_param_index(m->ops, "tension_cutoff");
-    if (ic < 0 || iphi < 0 || ipsi < 0)
-        return pm_error_set(PM_EINTERNAL, "material model %s lacks cohesion, friction_angle or dilatancy_angle",
-                            m->ops->name);
-    out->param[ic] = m->param[ic] / factor;
-    out->param[iphi] = reduce_angle(m->param[iphi], factor);
-    /* the model requires psi <= phi; reducing both tangents by F keeps that, rounding aside */
-    out->param[ipsi] = fmin(reduce_angle(m->param[ipsi], factor), out->param[iphi]);
-    if (it >= 0 && !isnan(m->param[it]))
-        out->param[it] = m->param[it] / factor;
+    pm_check(out->ops->reduce_strength(out, factor));
     if (out->ops->init && out->ops->init(out) != PM_OK)
         return pm_error_prefix(PM_EINPUT, "material \"%s\" reduced by F = %g: ", m->name, factor);
     return PM_OK;
@@ -85,10 +69,8 @@ static int trial_case_make(const pm_case *c, double factor, trial_case *tc)
     return PM_OK;
 }
 
-/* A trial ran to its end; does the slope stand? */
-static int judged_failed(const pm_case *c, const pm_srf_trial *t, double elastic_displacement)
+int pm_srf_judge(const pm_srf_opts *so, const pm_srf_trial *t, double elastic_displacement)
 {
-    const pm_srf_opts *so = &c->analysis.strength_reduction;
     return so->criterion == PM_SRF_DISPLACEMENT && elastic_displacement > 0 &&
            t->max_displacement > so->displacement_ratio * elastic_displacement;
 }
@@ -131,7 +113,7 @@ static int run_trial(const pm_case *c, double factor, double elastic_displacemen
     if (rc)
         return pm_error_prefix(rc, "strength reduction, F = %.4f: ", factor);
     t->converged = 1;
-    t->failed = judged_failed(c, t, elastic_displacement);
+    t->failed = pm_srf_judge(&c->analysis.strength_reduction, t, elastic_displacement);
     return PM_OK;
 }
 

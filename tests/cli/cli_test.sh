@@ -51,6 +51,10 @@ sed 's/"radius": 0.2 }, *$/"radius": 0.001 },/; s/"center": \[0.25, 0.25\], "rad
 expect_exit 2 "body that yields no particle" "$PMECH" run tiny.json
 check "says no particle" has "yields no particle" err.txt
 
+# A misspelt scatter strategy is refused rather than timed as the default.
+PMECH_SCATTER=bogus expect_exit 2 "PMECH_SCATTER=bogus" "$PMECH" run "$SRC/examples/elastic_disks/case.json" -o scatter.out --quiet
+check "names the variable, the value and the allowed ones" sh -c 'grep -q "PMECH_SCATTER" err.txt && grep -q "bogus" err.txt && grep -q "colour" err.txt && grep -q "buffers" err.txt'
+
 # A run that diverges: a fixed time step 50x above the stable one.
 sed 's/"end_time": 3.5, "cfl": 0.2/"end_time": 3.5, "dt": 0.5/' "$SRC/examples/elastic_disks/case.json" > diverge.json
 expect_exit 1 "diverging run" "$PMECH" run diverge.json -o diverge.out --quiet
