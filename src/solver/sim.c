@@ -7,6 +7,7 @@
 #include "core/seed.h"
 #include "meshfree_internal.h"
 #include "point_update.h"
+#include "scatter.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -159,16 +160,16 @@ static pm_scatter scatter_strategy(void)
 static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads, int need_buffers)
 {
     nd->mass = calloc(nn, sizeof(double));
-    nd->mom = calloc(2 * nn, sizeof(double));
-    nd->vel = calloc(2 * nn, sizeof(double));
-    nd->vel_new = calloc(2 * nn, sizeof(double));
-    nd->force = calloc(2 * nn, sizeof(double));
-    nd->acc = calloc(2 * nn, sizeof(double));
+    nd->mom = calloc(PM_DIM * nn, sizeof(double));
+    nd->vel = calloc(PM_DIM * nn, sizeof(double));
+    nd->vel_new = calloc(PM_DIM * nn, sizeof(double));
+    nd->force = calloc(PM_DIM * nn, sizeof(double));
+    nd->acc = calloc(PM_DIM * nn, sizeof(double));
     nd->fixed = calloc(nn, 1);
-    nd->vfix = calloc(2 * nn, sizeof(double));
+    nd->vfix = calloc(PM_DIM * nn, sizeof(double));
     nd->n_threads = n_threads < 1 ? 1 : n_threads;
     if (nd->n_threads > 1 && need_buffers)
-        nd->scratch = calloc((size_t)(nd->n_threads - 1) * 5 * nn, sizeof(double));
+        nd->scratch = calloc((size_t)(nd->n_threads - 1) * PM_SCATTER_WIDTH * nn, sizeof(double));
     if (!nd->mass || !nd->mom || !nd->vel || !nd->vel_new || !nd->force || !nd->acc || !nd->fixed ||
         !nd->vfix || (nd->n_threads > 1 && need_buffers && !nd->scratch))
         return pm_error_set(PM_ENOMEM, "cannot allocate nodal arrays for %zu nodes", nn);
@@ -380,9 +381,9 @@ void pm_sim_update_constraints(pm_sim *s)
             continue;
         const pm_node_set *set = &s->grid.sets[t->set];
         for (size_t i = 0; i < set->n; i++)
-            for (int d = 0; d < 2; d++)
+            for (int d = 0; d < PM_DIM; d++)
                 if (t->dirs & (1u << d))
-                    nd->vfix[2 * set->nodes[i] + d] = 0.0;
+                    nd->vfix[PM_DIM * set->nodes[i] + d] = 0.0;
         t->done = 1;
     }
 }
