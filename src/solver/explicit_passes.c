@@ -167,10 +167,13 @@ typedef struct cell_sums {
     double m[4], mom[PM_DIM][4], f[PM_DIM][4];
 } cell_sums;
 
-static inline void add_cell_sums(const pm_scatter_buf *b, const int32_t node[4], const cell_sums *a, unsigned what)
+static inline void add_cell_sums(const pm_scatter_buf *b, const lq_grid *q, int32_t cx, int32_t cy, const cell_sums *a,
+                                 unsigned what)
 {
+    int32_t node[4];
+    lq_nodes(q, cx, cy, node);
     for (int k = 0; k < 4; k++) {
-        const int32_t n = node[k];
+        const size_t n = (size_t)node[k];
         if (what & PM_Z_MASS)
             b->mass[n] += a->m[k];
         for (int d = 0; d < PM_DIM; d++) {
@@ -183,17 +186,17 @@ static inline void add_cell_sums(const pm_scatter_buf *b, const int32_t node[4],
 }
 
 /*
- * Inside a pass body: the stencil of the current particle, from the LQ cell (Nl, dNl, node) or from
- * st. With LQ a constant, each folds to a plain array access.
+ * Inside a pass body: the stencil of the current particle, from the LQ cell (Nl, dNl) or from st.
+ * With LQ a constant, each folds to a plain array access.
  */
 #define SN(k) (LQ ? Nl[k] : st.N[k])
 #define SDN(k, d) (LQ ? dNl[k][d] : st.dN[k][d])
-#define SNODE(k) (LQ ? node[k] : st.node[k])
 
 /*
  * The LQ cell run: when particle i is in another cell than the one before, flush (a statement
- * adding the old run's sums, if any), then find the new cell's nodes and run `load` (a statement
- * reading what the run needs from them). Expands to nothing in the generic instances.
+ * adding the old run's sums, if any, to the nodes of cell cx, cy), then find the new cell and its
+ * nodes (node[4]) and run `load` (a statement reading what the run needs from them). Only the cell
+ * is carried from one particle to the next: kept as an array, the node numbers went through memory.
  */
 #define LQ_ENTER_CELL(flush, load)                                                                     \
     do {                                                                                               \
@@ -203,6 +206,7 @@ static inline void add_cell_sums(const pm_scatter_buf *b, const int32_t node[4],
             }                                                                                          \
             cur = cell[i];                                                                             \
             lq_cell(&q, cur, &cx, &cy);                                                                \
+            int32_t node[4];                                                                           \
             lq_nodes(&q, cx, cy, node);                                                                \
             load;                                                                                      \
         }                                                                                              \
@@ -226,14 +230,17 @@ PM_BODY void p2g_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, 
     const int axi = s->c->formulation == PM_AXISYMMETRIC, shifted = c->shift != 0.0;
     const unsigned what = PM_Z_MASS | PM_Z_MOM | (c->with_force ? (unsigned)PM_Z_FORCE : 0u);
     const double shift = c->shift;
+    double g[PM_DIM];
+    for (int d = 0; d < PM_DIM; d++)
+        g[d] = c->g[d];
     cell_sums a;
     memset(&a, 0, sizeof a);
     pm_stencil st;
     double Nl[4], dNl[4][PM_DIM];
-    int32_t cur = -1, cx = 0, cy = 0, node[4] = {0, 0, 0, 0};
+    int32_t cur = -1, cx = 0, cy = 0;
     for (size_t i = lo; i < hi; i++) {
         if (LQ) {
-            LQ_ENTER_CELL(add_cell_sums(b, node, &a, what), memset(&a, 0, sizeof a));
+            LQ_ENTER_CELL(add_cell_sums(b, &q, cx, cy, &a, what), memset(&a, 0, sizeof a));
             lq_eval(&q, x + PM_DIM * i, cx, cy, Nl, dNl);
         } else if (stencil_at(s, i, &st) != PM_OK) {
             out->bad = (long)i < out->bad ? (long)i : out->bad;
@@ -245,26 +252,34 @@ PM_BODY void p2g_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, 
         double vp[PM_DIM];
         for (int d = 0; d < PM_DIM; d++)
             vp[d] = shifted ? v[PM_DIM * i + d] + shift * acc[PM_DIM * i + d] : v[PM_DIM * i + d];
-        for (int k = 0; k < nk; k++) {
-            const double w = SN(k) * m;
-            if (LQ) {
-                a.m[k] += w;
-                for (int d = 0; d < PM_DIM; d++)
-                    a.mom[d][k] += w * vp[d];
-            } else {
+        if (LQ) {
+            /* node innermost: the four nodes of the cell are one vector */
+            double w[4];
+            for (int k = 0; k < 4; k++) {
+                w[k] = Nl[k] * m;
+                a.m[k] += w[k];
+            }
+            for (int d = 0; d < PM_DIM; d++)
+                for (int k = 0; k < 4; k++)
+                    a.mom[d][k] += w[k] * vp[d];
+        } else {
+            for (int k = 0; k < nk; k++) {
                 const int32_t n = st.node[k];
+                const double w = st.N[k] * m;
                 b->mass[n] += w;
                 for (int d = 0; d < PM_DIM; d++)
                     b->mom[PM_DIM * n + d] += w * vp[d];
             }
         }
         if (what & PM_Z_FORCE) {
-            const double *sg = sig + PM_NS * i, V = vol[i];
-            const double hoop = axi ? sg[PM_SZZ] / x[PM_DIM * i] : 0.0;
+            double sg[PM_NS];
+            for (int j = 0; j < PM_NS; j++)
+                sg[j] = sig[PM_NS * i + j];
+            const double V = vol[i], hoop = axi ? sg[PM_SZZ] / x[PM_DIM * i] : 0.0;
             for (int k = 0; k < nk; k++) {
                 const double dN[PM_DIM] = {SDN(k, 0), SDN(k, 1)};
                 double f[PM_DIM];
-                node_force(sg, V, m, c->g, axi, hoop, SN(k), dN, f);
+                node_force(sg, V, m, g, axi, hoop, SN(k), dN, f);
                 for (int d = 0; d < PM_DIM; d++) {
                     if (LQ)
                         a.f[d][k] += f[d];
@@ -275,7 +290,7 @@ PM_BODY void p2g_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, 
         }
     }
     if (LQ && cur >= 0)
-        add_cell_sums(b, node, &a, what);
+        add_cell_sums(b, &q, cx, cy, &a, what);
 }
 
 static void p2g_range(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, const void *c, pm_range_out *out)
@@ -310,14 +325,14 @@ PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b,
     memset(&a, 0, sizeof a);
     pm_stencil st;
     double Nl[4], ga[PM_DIM][4] = {{0}};
-    int32_t cur = -1, cx = 0, cy = 0, node[4] = {0, 0, 0, 0};
+    int32_t cur = -1, cx = 0, cy = 0;
     for (size_t i = lo; i < hi; i++) {
         if (LQ) {
-            LQ_ENTER_CELL(add_cell_sums(b, node, &a, PM_Z_MOM), {
+            LQ_ENTER_CELL(add_cell_sums(b, &q, cx, cy, &a, PM_Z_MOM), {
                 memset(&a, 0, sizeof a);
                 for (int k = 0; k < 4; k++)
                     for (int d = 0; d < PM_DIM; d++)
-                        ga[d][k] = nacc[PM_DIM * node[k] + d];
+                        ga[d][k] = nacc[PM_DIM * (size_t)node[k] + d];
             });
             double xi, eta;
             lq_N(&q, x + PM_DIM * i, cx, cy, Nl, &xi, &eta);
@@ -326,15 +341,16 @@ PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b,
         }
         const int nk = LQ ? 4 : st.n;
         double ap[PM_DIM] = {0};
-        for (int k = 0; k < nk; k++)
-            for (int d = 0; d < PM_DIM; d++)
+        for (int d = 0; d < PM_DIM; d++)
+            for (int k = 0; k < nk; k++)
                 ap[d] += SN(k) * (LQ ? ga[d][k] : nacc[PM_DIM * st.node[k] + d]);
         double vp[PM_DIM];
         for (int d = 0; d < PM_DIM; d++)
             v[PM_DIM * i + d] = vp[d] = v[PM_DIM * i + d] + dt * ap[d];
         const double m = mass[i];
-        for (int k = 0; k < nk; k++)
-            for (int d = 0; d < PM_DIM; d++) {
+        /* node innermost: the four nodes of an LQ cell are one vector */
+        for (int d = 0; d < PM_DIM; d++)
+            for (int k = 0; k < nk; k++) {
                 if (LQ)
                     a.mom[d][k] += SN(k) * m * vp[d];
                 else
@@ -342,7 +358,7 @@ PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b,
             }
     }
     if (LQ && cur >= 0)
-        add_cell_sums(b, node, &a, PM_Z_MOM);
+        add_cell_sums(b, &q, cx, cy, &a, PM_Z_MOM);
 }
 
 static void musl_range(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, const void *dt, pm_range_out *out)
@@ -375,15 +391,15 @@ PM_BODY void usl_finish_body(pm_sim *s, size_t lo, size_t hi, double dt, int mus
     const int axi = s->c->formulation == PM_AXISYMMETRIC;
     pm_stencil st;
     double Nl[4], dNl[4][PM_DIM], sv[4][PM_DIM] = {{0}}, ev[4][PM_DIM] = {{0}}, ea[4][PM_DIM] = {{0}};
-    int32_t cur = -1, cx = 0, cy = 0, node[4] = {0, 0, 0, 0};
+    int32_t cur = -1, cx = 0, cy = 0;
     for (size_t i = lo; i < hi; i++) {
         if (LQ) {
             LQ_ENTER_CELL((void)0, {
                 for (int k = 0; k < 4; k++)
                     for (int d = 0; d < PM_DIM; d++) {
-                        sv[k][d] = vs[PM_DIM * node[k] + d];
-                        ev[k][d] = nvn[PM_DIM * node[k] + d];
-                        ea[k][d] = musl ? 0.0 : nacc[PM_DIM * node[k] + d];
+                        sv[k][d] = vs[PM_DIM * (size_t)node[k] + d];
+                        ev[k][d] = nvn[PM_DIM * (size_t)node[k] + d];
+                        ea[k][d] = musl ? 0.0 : nacc[PM_DIM * (size_t)node[k] + d];
                     }
             });
             lq_eval(&q, p->x + PM_DIM * i, cx, cy, Nl, dNl);

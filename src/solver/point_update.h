@@ -77,7 +77,9 @@ static inline int pm_point_update(const pm_material *m, pm_formulation form, con
     pm_point_kinematics(from->F, H, fz, &in);
     in.dt = dt;
     const double J2 = in.F_new[0] * in.F_new[4] - in.F_new[1] * in.F_new[3];
-    const double j2 = in.F_incr[0] * in.F_incr[4] - in.F_incr[1] * in.F_incr[3];
+    /* det F_incr > 0 follows from det F_new > 0 but for round-off; it is tested where it scales the
+     * volume (the implicit caller also divides by it) */
+    const double j2 = from->incr_vol ? in.F_incr[0] * in.F_incr[4] - in.F_incr[1] * in.F_incr[3] : 1.0;
     if (!(J2 > 0) || !(j2 > 0) || !(fz > 0))
         return 1;
     const double *sg0 = from->stress;
@@ -112,8 +114,8 @@ static inline double pm_point_wave_speed(const pm_material *m, const double *sta
     const double rho = mass / vol;
     const double cw = m->ops->wave_speed ? m->ops->wave_speed(m, state, rho)
                                          : pm_material_elastic_wave_speed(m, state, rho);
-    double v2 = 0;
-    for (int d = 0; d < PM_DIM; d++)
+    double v2 = v[0] * v[0];
+    for (int d = 1; d < PM_DIM; d++)
         v2 += v[d] * v[d];
     return cw + sqrt(v2);
 }
