@@ -9,6 +9,8 @@
 #include "contact/contact.h"
 #include "core/seed.h"
 #include "meshfree_internal.h"
+#include "point_update.h"
+#include "scatter.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -61,16 +63,16 @@ static int scatter_strategy(pm_scatter *out)
 static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads, int need_buffers)
 {
     nd->mass = calloc(nn, sizeof(double));
-    nd->mom = calloc(2 * nn, sizeof(double));
-    nd->vel = calloc(2 * nn, sizeof(double));
-    nd->vel_new = calloc(2 * nn, sizeof(double));
-    nd->force = calloc(2 * nn, sizeof(double));
-    nd->acc = calloc(2 * nn, sizeof(double));
+    nd->mom = calloc(PM_DIM * nn, sizeof(double));
+    nd->vel = calloc(PM_DIM * nn, sizeof(double));
+    nd->vel_new = calloc(PM_DIM * nn, sizeof(double));
+    nd->force = calloc(PM_DIM * nn, sizeof(double));
+    nd->acc = calloc(PM_DIM * nn, sizeof(double));
     nd->fixed = calloc(nn, 1);
-    nd->vfix = calloc(2 * nn, sizeof(double));
+    nd->vfix = calloc(PM_DIM * nn, sizeof(double));
     nd->n_threads = n_threads < 1 ? 1 : n_threads;
     if (nd->n_threads > 1 && need_buffers)
-        nd->scratch = calloc((size_t)(nd->n_threads - 1) * 5 * nn, sizeof(double));
+        nd->scratch = calloc((size_t)(nd->n_threads - 1) * PM_SCATTER_WIDTH * nn, sizeof(double));
     if (!nd->mass || !nd->mom || !nd->vel || !nd->vel_new || !nd->force || !nd->acc || !nd->fixed ||
         !nd->vfix || (nd->n_threads > 1 && need_buffers && !nd->scratch))
         return pm_error_set(PM_ENOMEM, "cannot allocate nodal arrays for %zu nodes", nn);
@@ -239,20 +241,16 @@ void pm_sim_energy(const pm_sim *s, double *kinetic, double *strain, double *gra
     pm_sim_gravity(s, s->t, g);
 #pragma omp parallel for schedule(static) reduction(+ : ke, se, ge) num_threads(s->nd.n_threads)
     for (size_t i = 0; i < p->n; i++) {
-        const double *v = p->v + 2 * i, *x = p->x + 2 * i, *x0 = p->x0 + 2 * i;
-        ke += 0.5 * p->mass[i] * (v[0] * v[0] + v[1] * v[1]);
-        ge -= p->mass[i] * (g[0] * (x[0] - x0[0]) + g[1] * (x[1] - x0[1]));
+        const double *v = p->v + PM_DIM * i, *x = p->x + PM_DIM * i, *x0 = p->x0 + PM_DIM * i;
+        double v2 = 0, gx = 0;
+        for (int d = 0; d < PM_DIM; d++) {
+            v2 += v[d] * v[d];
+            gx += g[d] * (x[d] - x0[d]);
+        }
+        ke += 0.5 * p->mass[i] * v2;
+        ge -= p->mass[i] * gx;
         const pm_material *m = &s->c->materials[p->material[i]];
-        const double *st = p->stress + PM_NS * i, *F = p->F + PM_NF * i;
-        double s6[6] = {st[PM_SXX], st[PM_SYY], st[PM_SZZ], st[PM_SXY], 0, 0};
-        pm_material_step in;
-        memset(&in, 0, sizeof in);
-        double F3[9] = {F[PM_FXX], F[PM_FXY], 0, F[PM_FYX], F[PM_FYY], 0, 0, 0, F[PM_FZZ]};
-        memcpy(in.F_new, F3, sizeof F3);
-        memcpy(in.F_old, F3, sizeof F3);
-        in.F_incr[0] = in.F_incr[4] = in.F_incr[8] = 1.0;
-        double w = m->ops->strain_energy ? m->ops->strain_energy(m, &in, p->state + p->n_state * i, s6)
-                                         : pm_material_elastic_energy(m, &in, NULL, s6);
+        const double w = pm_point_strain_energy(m, p->F + PM_NF * i, p->stress + PM_NS * i, p->state + p->n_state * i);
         se += w * p->vol0[i];
     }
     *kinetic = ke;

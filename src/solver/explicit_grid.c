@@ -1,0 +1,105 @@
+/*
+ * The grid side of the explicit step: nodal velocities from momentum, accelerations from forces with
+ * local damping, constraints, then contact (src/contact): its law acts on the end-of-step velocity
+ * only, node by node after the parallel loops, and the acceleration is then taken from the velocity
+ * change so that the particles receive the reaction impulses too.
+ */
+#include "explicit_internal.h"
+#include "meshfree_internal.h"
+#include "contact/contact.h"
+
+#include <math.h>
+
+static void constrain(const pm_nodal *nd, int32_t n, double v[PM_DIM])
+{
+    for (int d = 0; d < PM_DIM; d++)
+        if (nd->fixed[n] & (1u << d))
+            v[d] = nd->vfix[PM_DIM * n + d];
+}
+
+/* Smallest nodal mass treated as carrying material: guards divisions by round-off masses. */
+static double mass_floor(const pm_sim *s)
+{
+    return s->p.n ? 1e-12 * s->p.mass[0] : 0.0;
+}
+
+/* Local (Cundall) damping: the force reduced by alpha times its magnitude against the velocity. */
+static inline double damped(double f, double v, double alpha)
+{
+    return f - alpha * fabs(f) * (v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0);
+}
+
+void pm_xp_grid_update(pm_sim *s, double dt, int constrain_start)
+{
+    pm_nodal *nd = &s->nd;
+    const size_t nn = s->grid.n_nodes;
+    const double alpha = s->c->analysis.damping, mfloor = mass_floor(s);
+#pragma omp parallel for schedule(static) num_threads(nd->n_threads)
+    for (size_t n = 0; n < nn; n++) {
+        double *v = nd->vel + PM_DIM * n, *vn = nd->vel_new + PM_DIM * n, *a = nd->acc + PM_DIM * n;
+        const double m = nd->mass[n];
+        if (!(m > mfloor)) {
+            for (int d = 0; d < PM_DIM; d++)
+                v[d] = vn[d] = a[d] = 0;
+            continue;
+        }
+        for (int d = 0; d < PM_DIM; d++) {
+            v[d] = nd->mom[PM_DIM * n + d] / m;
+            const double f = alpha > 0 ? damped(nd->force[PM_DIM * n + d], v[d], alpha) : nd->force[PM_DIM * n + d];
+            vn[d] = v[d] + dt * f / m;
+        }
+        if (constrain_start)
+            constrain(nd, (int32_t)n, v);
+        constrain(nd, (int32_t)n, vn);
+        /* here rather than in a loop of its own: the velocities are still in registers */
+        for (int d = 0; d < PM_DIM; d++)
+            a[d] = (vn[d] - v[d]) / dt;
+    }
+    pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, dt);
+    if (s->mf && s->mf->transform)
+        pm_mf_impose_update(s, dt, constrain_start);
+}
+
+void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out)
+{
+    pm_nodal *nd = &s->nd;
+    const size_t nn = s->grid.n_nodes;
+    const double mfloor = mass_floor(s);
+#pragma omp parallel for schedule(static) num_threads(nd->n_threads)
+    for (size_t n = 0; n < nn; n++) {
+        double *v = out + PM_DIM * n;
+        const double m = nd->mass[n];
+        for (int d = 0; d < PM_DIM; d++)
+            v[d] = m > mfloor ? nd->mom[PM_DIM * n + d] / m : 0.0;
+        if (m > mfloor)
+            constrain(nd, (int32_t)n, v);
+    }
+    pm_contact_project_normal(s->contact, pm_contact_field_of(nd, out, mfloor));
+    if (s->mf && s->mf->transform)
+        pm_mf_impose(s, out, 0);
+}
+
+void pm_xp_grid_newmark(pm_sim *s, double dt, double gamma)
+{
+    pm_nodal *nd = &s->nd;
+    const size_t nn = s->grid.n_nodes;
+    const double alpha = s->c->analysis.damping, mfloor = mass_floor(s);
+#pragma omp parallel for schedule(static) num_threads(nd->n_threads)
+    for (size_t n = 0; n < nn; n++) {
+        const double m = nd->mass[n];
+        double *a = nd->acc + PM_DIM * n, *v = nd->vel + PM_DIM * n, *vn = nd->vel_new + PM_DIM * n;
+        for (int d = 0; d < PM_DIM; d++) {
+            if (!(m > mfloor)) {
+                a[d] = vn[d] = 0;
+                continue;
+            }
+            const double f = alpha > 0 ? damped(nd->force[PM_DIM * n + d], v[d], alpha) : nd->force[PM_DIM * n + d];
+            /* prescribed components: acceleration zero, the force is the reaction */
+            a[d] = (nd->fixed[n] & (1u << d)) ? 0.0 : f / m;
+            vn[d] = v[d] + gamma * dt * a[d];
+        }
+    }
+    pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, gamma * dt);
+    if (s->mf && s->mf->transform)
+        pm_mf_impose(s, nd->acc, 1);
+}
