@@ -6,7 +6,7 @@
 set -e
 PMECH=${1:-build/pmech}
 METHOD=${2:-mpm}
-SHAPE=${3:-linear}
+SHAPE=${3:-bspline2}
 DIR=$(dirname "$0")
 TMP=$(mktemp -d)
 printf '%-9s %-12s %-8s %-10s %s\n' h cells tip_uy newton seconds

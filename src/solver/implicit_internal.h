@@ -33,7 +33,7 @@ typedef struct pm_implicit_ws {
     double *spring;           /* stabilisation stiffness scale per node: M touch / h^2 */
     double *touch;            /* volume of the particles whose stencil holds the node */
     double *smax;             /* largest stress magnitude among those particles */
-    double *anchor;           /* quasi-static weak-node spring (residual and tangent), 0 elsewhere */
+    double *anchor;           /* quasi-static weak-node spring stiffness (weak_springs()), 0 elsewhere */
     double *K_base, *res_base;/* tangent values and residual of the iterate a correction starts from */
     size_t K_base_cap;
     /* node -> particles, for the pattern */
