@@ -58,9 +58,8 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
     sf->axis = -1;
     for (int d = 0; d < PM_DIM; d++)
         sf->normal[d] = normal[d];
-    /* node-set entries come first; the walls' entries after them are found again by every detection */
-    if (ct->n_node > ct->n_fixed)
-        ct->n_node = ct->n_fixed;
+    /* node-set entries come first; the walls' entries after them are found again by every detection,
+     * so n_node is cut back to the node sets' entries below */
     sf->first = ct->n_fixed;
     sf->n = n;
     for (size_t i = 0; i < n; i++) {

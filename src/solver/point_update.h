@@ -85,7 +85,7 @@ static inline int pm_point_update(const pm_material *m, pm_formulation form, con
     const double *sg0 = from->stress;
     double s6[6] = {sg0[PM_SXX], sg0[PM_SYY], sg0[PM_SZZ], sg0[PM_SXY], 0, 0};
     if (form == PM_PLANE_STRESS) {
-        double Tl[36];
+        double Tl[36] = {0}; /* the iteration needs the tangent even when the caller does not */
         if (pm_point_plane_stress(m, &in, state, from->state, n_state, s6, s6, T ? T : Tl))
             return 1;
     } else {
