@@ -137,6 +137,15 @@ const pm_node_set *pm_grid_find_set(const pm_grid *g, const char *name);
  */
 int pm_grid_add_line_set(pm_grid *g, const char *name, int axis, double value, const double normal[2]);
 
+/**
+ * @brief Which side of the grid's bounding box a boundary name means.
+ * @param name a boundary name ("x_min", "x_max", "y_min", "y_max", ...)
+ * @param axis receives the side's axis (0 = x, 1 = y) when it is a side
+ * @param hi receives 1 for the upper side (x_max, y_max), 0 for the lower
+ * @return 1 if @p name names a side, 0 otherwise (a mesh group or a line)
+ */
+int pm_grid_side_of(const char *name, int *axis, int *hi);
+
 #ifdef __cplusplus
 }
 #endif

@@ -93,25 +93,13 @@ int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double nor
     return k;
 }
 
-static int side_of(const char *name, int *axis, int *hi)
-{
-    static const char *const sides[4] = {"x_min", "x_max", "y_min", "y_max"};
-    for (int k = 0; k < 4; k++)
-        if (strcmp(name, sides[k]) == 0) {
-            *axis = k / 2;
-            *hi = k % 2;
-            return 1;
-        }
-    return 0;
-}
-
 /* A `fixed` condition on a grid side that holds the side's normal component: in MPM every grid node
  * on the side is held; meshfree nodes that reach the side later (material spreading over a base) are
  * stopped there by a guard wall that sticks when the tangent is held too and slides freely
  * otherwise; the nodes on it at t = 0 keep their condition as well. */
 static int side_wall(const pm_case_bc *bc, int *axis, int *hi, double *mu)
 {
-    if (bc->type != PM_BC_FIXED || bc->line_axis >= 0 || !side_of(bc->boundary, axis, hi) ||
+    if (bc->type != PM_BC_FIXED || bc->line_axis >= 0 || !pm_grid_side_of(bc->boundary, axis, hi) ||
         !(bc->dirs & (1u << *axis)))
         return 0;
     *mu = (bc->dirs & (1u << (1 - *axis))) ? INFINITY : 0.0;
@@ -166,7 +154,7 @@ static int wall_surfaces(pm_contact *ct, const pm_case *c, const pm_grid *frame)
             value = bc->line_value;
             for (int d = 0; d < PM_DIM; d++)
                 normal[d] = bc->line_normal[d];
-        } else if (side_of(bc->boundary, &axis, &hi)) {
+        } else if (pm_grid_side_of(bc->boundary, &axis, &hi)) {
             value = hi ? frame->hi[axis] : frame->lo[axis];
             normal[axis] = hi ? 1.0 : -1.0;
         } else {

@@ -133,3 +133,15 @@ int32_t pm_grid_locate_from(const pm_grid *g, const double xp[2], int32_t hint)
     /* tri3: lower triangle when below the lower-left to upper-right diagonal */
     return (fx - cx >= fy - cy) ? 2 * c : 2 * c + 1;
 }
+
+int pm_grid_side_of(const char *name, int *axis, int *hi)
+{
+    static const char *const sides[] = {"x_min", "x_max", "y_min", "y_max"};
+    for (int k = 0; k < (int)(sizeof sides / sizeof sides[0]); k++)
+        if (strcmp(name, sides[k]) == 0) {
+            *axis = k / 2;
+            *hi = k % 2;
+            return 1;
+        }
+    return 0;
+}

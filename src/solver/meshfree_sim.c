@@ -30,18 +30,6 @@
  * while a direct solver still factors the tangent accurately. */
 #define PM_MF_PENALTY 1e5
 
-static int side_of(const char *name, int *axis, int *hi)
-{
-    static const char *const sides[4] = {"x_min", "x_max", "y_min", "y_max"};
-    for (int k = 0; k < 4; k++)
-        if (strcmp(name, sides[k]) == 0) {
-            *axis = k / 2;
-            *hi = k % 2;
-            return 1;
-        }
-    return 0;
-}
-
 /* GMM: the nodes of every cell holding a particle; map[old] = new index or -1. */
 static int gmm_nodes(const pm_grid *g, const pm_particles *p, int32_t *map, size_t *n_out)
 {
@@ -77,7 +65,7 @@ static int node_sets(pm_sim *s, const int32_t *map)
         size_t n = 0;
         int axis, hi;
         if (mf->rkpm) {
-            if (!side_of(set->name, &axis, &hi))
+            if (!pm_grid_side_of(set->name, &axis, &hi))
                 continue; /* physical groups name grid nodes, which RKPM does not have */
             const double at = hi ? bg->hi[axis] : bg->lo[axis];
             const double tol = 0.5 * mf->cloud->h * (1 + 1e-6);
@@ -188,7 +176,7 @@ static int side_offsets(pm_sim *s, int comp)
     for (size_t b = 0; b < s->c->n_bcs; b++) {
         const pm_case_bc *bc = &s->c->bcs[b];
         int axis, hi;
-        if (bc->type == PM_BC_FRICTION || !(bc->dirs & (1u << comp)) || !side_of(bc->boundary, &axis, &hi))
+        if (bc->type == PM_BC_FRICTION || !(bc->dirs & (1u << comp)) || !pm_grid_side_of(bc->boundary, &axis, &hi))
             continue;
         const pm_node_set *set = pm_grid_find_set(&s->grid, bc->boundary);
         const double at = hi ? mf->background.hi[axis] : mf->background.lo[axis];
