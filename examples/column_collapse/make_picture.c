@@ -34,23 +34,35 @@ int main(int argc, char **argv)
         fprintf(stderr, "make_picture: %s\n", pm_error_message());
     if (s) {
         const double cap = atof(argv[3]);
+        const pm_particles *p = pm_sim_particles(s);
         double xmax = 0, hwall = 0, epmax = 0;
-        for (size_t i = 0; i < s->p.n; i++) {
-            const double x = s->p.x[2 * i], y = s->p.x[2 * i + 1];
+        /* the picture shows a copy of the particles whose plastic strain is clipped at cap */
+        pm_particles shown = *p;
+        shown.eps_p = malloc((p->n ? p->n : 1) * sizeof *shown.eps_p);
+        if (!shown.eps_p) {
+            fprintf(stderr, "make_picture: out of memory\n");
+            pm_sim_destroy(s);
+            pm_case_free(&c);
+            return 2;
+        }
+        for (size_t i = 0; i < p->n; i++) {
+            const double x = p->x[2 * i], y = p->x[2 * i + 1];
             xmax = fmax(xmax, x);
             if (x < 0.1)
                 hwall = fmax(hwall, y);
-            epmax = fmax(epmax, s->p.eps_p[i]);
-            s->p.eps_p[i] = fmin(s->p.eps_p[i], cap);
+            epmax = fmax(epmax, p->eps_p[i]);
+            shown.eps_p[i] = fmin(p->eps_p[i], cap);
         }
         printf("t = %g s: run-out (largest x) %.3f m, height at the wall %.3f m, largest plastic strain %.2f\n",
-               s->t, xmax, hwall, epmax);
+               pm_sim_time(s), xmax, hwall, epmax);
         char title[256];
-        snprintf(title, sizeof title, "column collapse, t = %.2f s, plastic strain (scale clipped at %g)", s->t, cap);
+        snprintf(title, sizeof title, "column collapse, t = %.2f s, plastic strain (scale clipped at %g)",
+                 pm_sim_time(s), cap);
         if (!rc)
-            rc = pm_render_particles(argv[2], &s->grid, &s->p, PM_FIELD_PLASTIC_STRAIN, 900, title);
+            rc = pm_render_particles(argv[2], pm_sim_grid(s), &shown, PM_FIELD_PLASTIC_STRAIN, 900, title);
         if (rc)
             fprintf(stderr, "make_picture: %s\n", pm_error_message());
+        free(shown.eps_p);
         pm_sim_destroy(s);
     }
     pm_case_free(&c);

@@ -59,7 +59,7 @@ typedef struct pm_approx_ops {
     /** Free private data (may be NULL). */
     void (*destroy)(pm_approx *a);
     /**
-     * Check that the kind fits the grid and set up private data from pm_approx::opts (may be
+     * Check that the kind fits the grid and set up private data from the creation options (may be
      * NULL). Called once by pm_approx_create_opts(); returns PM_OK or PM_EINPUT/PM_ENOMEM.
      */
     int (*init)(pm_approx *a);
@@ -70,16 +70,6 @@ typedef struct pm_approx_opts {
     double lme_gamma;       /**< LME: gamma = beta h^2; NAN = the default (1.8) */
     double support_radius;  /**< meshfree/LME support radius in metres; NAN = from the kind's tolerance */
 } pm_approx_opts;
-
-/** An approximation bound to a grid (or node cloud). */
-struct pm_approx {
-    const pm_approx_ops *ops;  /**< the kind */
-    const pm_grid *grid;       /**< nodes it interpolates from */
-    int fast_linear_quad;      /**< 1: linear quad4 on a structured grid; solvers may inline it */
-    int n_threads;             /**< OpenMP threads for connect (set by the owner; 1 by default) */
-    void *data;                /**< private data of the kind */
-    pm_approx_opts opts;       /**< tuning keys given at creation */
-};
 
 /**
  * @brief Create the approximation called @p name on grid @p g.
@@ -144,30 +134,30 @@ int pm_approx_serves(const char *name, int method);
 const pm_approx_ops *pm_approx_find(const char *name, int method);
 
 /**
- * @brief Linear shape functions of a structured quad4 cell, inline for the solvers' hot loops.
- * @param g structured grid
- * @param xp point
- * @param cell cell containing xp
- * @param node receives the 4 node indices (counter-clockwise from lower-left)
- * @param N receives the 4 values
- * @param dN receives the 4 gradients, (d/dx, d/dy) interleaved
+ * @brief Rebuild the connectivity of all points (MPM: the cell of each point; meshfree: the
+ *        neighbour search). Needed after points move and before pm_approx_eval().
+ * @param a the approximation
+ * @param p the points
+ * @return PM_OK, or PM_ESIM naming a particle that left the grid
  */
-static inline void pm_linear_quad_eval(const pm_grid *g, const double xp[2], int32_t cell,
-                                       int32_t node[4], double N[4], double dN[8])
-{
-    const int nx = g->cells[0];
-    const int cx = cell % nx, cy = cell / nx;
-    const double ihx = 1.0 / g->h[0], ihy = 1.0 / g->h[1];
-    const double xi = (xp[0] - g->origin[0]) * ihx - cx;
-    const double eta = (xp[1] - g->origin[1]) * ihy - cy;
-    const int32_t n0 = cy * (nx + 1) + cx;
-    node[0] = n0; node[1] = n0 + 1; node[2] = n0 + nx + 2; node[3] = n0 + nx + 1;
-    N[0] = (1 - xi) * (1 - eta); N[1] = xi * (1 - eta); N[2] = xi * eta; N[3] = (1 - xi) * eta;
-    dN[0] = -(1 - eta) * ihx; dN[1] = -(1 - xi) * ihy;
-    dN[2] = (1 - eta) * ihx;  dN[3] = -xi * ihy;
-    dN[4] = eta * ihx;        dN[5] = xi * ihy;
-    dN[6] = -eta * ihx;       dN[7] = (1 - xi) * ihy;
-}
+int pm_approx_connect(pm_approx *a, pm_particles *p);
+
+/**
+ * @brief The nodes point @p ip talks to, with shape function values and gradients.
+ * @param a the approximation (connected to @p p)
+ * @param p the points
+ * @param ip index of the point
+ * @param s receives the stencil
+ * @return PM_OK or PM_ESIM
+ */
+int pm_approx_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_stencil *s);
+
+/**
+ * @brief The kind of an approximation, to ask its name and capabilities.
+ * @param a the approximation
+ * @return its ops table
+ */
+const pm_approx_ops *pm_approx_kind(const pm_approx *a);
 
 #ifdef __cplusplus
 }

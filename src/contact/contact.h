@@ -59,7 +59,7 @@
 #include "pmech/case.h"
 #include "pmech/grid.h"
 #include "pmech/particles.h"
-#include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 #include <stddef.h>
 #include <stdint.h>

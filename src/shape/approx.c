@@ -3,7 +3,7 @@
  * node-cloud kind one line in `cloud_kinds`. Every list of names, and which method takes which
  * name, is read off these two tables.
  */
-#include "pmech/approx.h"
+#include "approx_internal.h"
 #include "pmech/case.h"
 #include "pmech/error.h"
 #include "pmech/meshfree.h"
@@ -167,6 +167,21 @@ void pm_approx_destroy(pm_approx *a)
     if (a->ops->destroy)
         a->ops->destroy(a);
     free(a);
+}
+
+int pm_approx_connect(pm_approx *a, pm_particles *p)
+{
+    return a->ops->connect(a, p);
+}
+
+int pm_approx_eval(const pm_approx *a, const pm_particles *p, size_t ip, pm_stencil *s)
+{
+    return a->ops->eval(a, p, ip, s);
+}
+
+const pm_approx_ops *pm_approx_kind(const pm_approx *a)
+{
+    return a->ops;
 }
 
 const pm_cloud_kind *pm_cloud_kind_of(const pm_approx_ops *ops)

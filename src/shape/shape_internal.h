@@ -2,7 +2,7 @@
 #ifndef PMECH_SHAPE_INTERNAL_H
 #define PMECH_SHAPE_INTERNAL_H
 
-#include "pmech/approx.h"
+#include "approx_internal.h"
 #include "pmech/cloud.h"
 #include "pmech/meshfree.h"
 

@@ -6,7 +6,7 @@
 
 #include "pmech/case.h"
 #include "pmech/grid.h"
-#include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 /* The grid nodes of boundary_conditions[b] at t = 0: a named side or group, or a line (whose set is
  * added to g, restricted to its from..to and given its normal). PM_EINPUT naming the condition when

@@ -7,7 +7,7 @@
 #ifndef PMECH_EXPLICIT_INTERNAL_H
 #define PMECH_EXPLICIT_INTERNAL_H
 
-#include "pmech/sim.h"
+#include "solver/sim_internal.h"
 #include "scatter.h"
 
 /* Mass, momentum (of v + mom_shift * a) and, with with_force, internal force plus weight (gravity g)

@@ -3,6 +3,7 @@
 #define PMECH_IMPLICIT_INTERNAL_H
 
 #include "pmech/implicit.h"
+#include "solver/sim_internal.h"
 #include "pmech/sparse.h"
 
 #include <stdint.h>

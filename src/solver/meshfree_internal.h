@@ -6,7 +6,7 @@
 
 #include "pmech/cloud.h"
 #include "pmech/meshfree.h"
-#include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 struct pm_implicit_ws;
 

@@ -14,6 +14,7 @@
 #include "pmech/error.h"
 #include "pmech/material.h"
 #include "pmech/particles.h"
+#include "shape/approx_internal.h"
 
 #include <math.h>
 #include <string.h>

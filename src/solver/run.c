@@ -1,5 +1,5 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
-#include "pmech/sim.h"
+#include "sim_internal.h"
 #include "pmech/error.h"
 #include "pmech/implicit.h"
 #include "pmech/output.h"

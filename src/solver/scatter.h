@@ -8,7 +8,7 @@
 #ifndef PMECH_SCATTER_H
 #define PMECH_SCATTER_H
 
-#include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 #include <stddef.h>
 

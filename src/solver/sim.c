@@ -1,6 +1,6 @@
 /* Setting up a simulation from a case: grid, approximation, particles, nodal arrays; its boundary
  * conditions (boundary.c) and contact surfaces (src/contact). */
-#include "pmech/sim.h"
+#include "sim_internal.h"
 #include "pmech/density.h"
 #include "pmech/error.h"
 #include "pmech/implicit.h"
@@ -204,6 +204,32 @@ void pm_sim_destroy(pm_sim *s)
 const pm_grid *pm_sim_frame_grid(const pm_sim *s)
 {
     return s->mf ? &s->mf->background : &s->grid;
+}
+
+const pm_particles *pm_sim_particles(const pm_sim *s)
+{
+    return &s->p;
+}
+
+const pm_grid *pm_sim_grid(const pm_sim *s)
+{
+    return &s->grid;
+}
+
+double pm_sim_time(const pm_sim *s)
+{
+    return s->t;
+}
+
+long pm_sim_steps(const pm_sim *s)
+{
+    return s->step;
+}
+
+int pm_sim_advance(pm_sim *s, double dt)
+{
+    return s->c->analysis.type == PM_ANALYSIS_EXPLICIT ? pm_explicit_step(s, dt)
+                                                        : pm_implicit_step(s, dt, NULL, NULL);
 }
 
 void pm_sim_gravity(const pm_sim *s, double t, double g[2])

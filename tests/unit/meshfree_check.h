@@ -11,6 +11,7 @@
 #include "pmech/cloud.h"
 #include "pmech/error.h"
 #include "pmech/meshfree.h"
+#include "shape/approx_internal.h"
 
 static inline double mc_rnd(unsigned *seed) { return (double)rand_r(seed) / RAND_MAX; }
 

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pmech/approx.h"
+#include "shape/approx_internal.h"
 #include "pmech/grid.h"
 #include "pmech/particles.h"
 

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "pmech/approx.h"
+#include "shape/approx_internal.h"
 #include "pmech/case.h"
 #include "pmech/error.h"
 #include "pmech/meshfree.h"

@@ -14,6 +14,7 @@
 #include "contact/contact.h"
 #include "pmech/error.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 #define NEAR(a, b) assert_true(fabs((a) - (b)) <= 1e-12 * (1 + fabs(b)))
 

@@ -19,6 +19,7 @@
 
 #include "pmech/material.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 static const double E = 2e7, nu = 0.25, dt = 1e-3, ex = 0.8, ey = -0.3;
 

@@ -15,6 +15,7 @@
 #include "pmech/case.h"
 #include "pmech/error.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 static void repo_path(const char *rel, char *out, size_t n)
 {

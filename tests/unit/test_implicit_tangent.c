@@ -17,6 +17,7 @@
 
 #include "pmech/case.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 #include "solver/implicit_internal.h"
 #include "solver/meshfree_internal.h"
 

@@ -10,7 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "pmech/approx.h"
+#include "shape/approx_internal.h"
 #include "pmech/grid.h"
 #include "pmech/particles.h"
 #include "shape_check.h"

@@ -12,6 +12,7 @@
 
 #include "pmech/material.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 static pm_case c;
 static pm_material m;

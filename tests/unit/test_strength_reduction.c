@@ -20,6 +20,7 @@
 #include "pmech/error.h"
 #include "pmech/material.h"
 #include "pmech/strength_reduction.h"
+#include "solver/sim_internal.h"
 
 static void set_param(pm_material *m, const char *key, double v)
 {

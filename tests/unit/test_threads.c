@@ -16,6 +16,7 @@
 
 #include "pmech/material.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 typedef struct setup {
     int threads;

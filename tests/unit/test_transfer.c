@@ -13,6 +13,7 @@
 
 #include "pmech/material.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 static void make_case(pm_case *c, pm_scheme scheme, pm_element el, pm_material *mat, pm_case_body *body)
 {

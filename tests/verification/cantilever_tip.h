@@ -4,6 +4,7 @@
 #define PMECH_CANTILEVER_TIP_H
 
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 #define L_BEAM 8.0
 

@@ -23,6 +23,7 @@
 
 #include "pmech/error.h"
 #include "pmech/implicit.h"
+#include "solver/sim_internal.h"
 
 #include <math.h>
 #include <stdio.h>

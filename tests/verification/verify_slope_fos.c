@@ -31,6 +31,7 @@
 
 #include "pmech/error.h"
 #include "pmech/strength_reduction.h"
+#include "solver/sim_internal.h"
 
 #include <stdio.h>
 #include <stdlib.h>

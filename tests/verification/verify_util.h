@@ -5,6 +5,7 @@
 
 #include "pmech/case.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 /** Directory of the verification sources (argv[1]); examples are at <dir>/../../examples. */
 extern const char *vu_dir;
