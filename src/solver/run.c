@@ -1,9 +1,9 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "sim_internal.h"
 #include "pmech/error.h"
-#include "pmech/implicit.h"
-#include "pmech/output.h"
-#include "pmech/progress.h"
+#include "solver/implicit.h"
+#include "io/output.h"
+#include "io/progress.h"
 #include "pmech/render.h"
 
 #include <math.h>
