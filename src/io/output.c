@@ -428,7 +428,7 @@ int pm_output_open(pm_output **out, const char *dir, const pm_case *c, const pm_
         char path[OUT_PATH_MAX];
         rc = join(path, o->dir, "grid.vtu");
         if (!rc)
-            rc = pm_vtu_write_grid(path, g);
+            rc = pm_vtu_write_grid(path, g, NULL, NULL);
     }
     if (!rc)
         rc = open_csvs(o);
@@ -463,7 +463,7 @@ int pm_output_frame(pm_output *o, double t, const pm_particles *p)
     char name[64], path[OUT_PATH_MAX];
     snprintf(name, sizeof name, "particles_%06zu.vtu", o->n_frames);
     pm_check(join(path, o->dir, name));
-    pm_check(pm_vtu_write_particles(path, p, o->scratch));
+    pm_check(pm_vtu_write_particles(path, p, o->scratch, t));
     o->frame_t[o->n_frames++] = t;
     int rc = write_pvd(o);
     /* frames are where CSV readers may look: make every line so far visible */

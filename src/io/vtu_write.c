@@ -1,6 +1,7 @@
 /* VTK XML UnstructuredGrid files with binary appended (raw) data: no base64 or compression cost,
  * one fwrite per array, so a million particles take a fraction of a second. */
 #include "io/vtu_write.h"
+#include "io/particle_fields.h"
 #include "pmech/error.h"
 
 #include <errno.h>
@@ -57,9 +58,14 @@ int pm_vtu_write_header(FILE *f, const pm_vtu_piece *pc)
     fprintf(f, "<?xml version=\"1.0\"?>\n"
                "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" PM_VTU_BYTE_ORDER
                "\" header_type=\"UInt64\">\n"
-               "  <UnstructuredGrid>\n"
-               "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n",
-            pc->n_points, pc->n_cells);
+               "  <UnstructuredGrid>\n");
+    if (pc->time)
+        fprintf(f, "    <FieldData>\n"
+                   "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">%.17g"
+                   "</DataArray>\n"
+                   "    </FieldData>\n",
+                *pc->time);
+    fprintf(f, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", pc->n_points, pc->n_cells);
     if (pc->n_point_data) {
         fprintf(f, "      <PointData>\n");
         for (size_t k = 0; k < pc->n_point_data; k++) {
@@ -119,9 +125,29 @@ static int fail_path(int rc, const char *path)
     return pm_error_prefix(rc, "cannot write '%s': ", path);
 }
 
-int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratch)
+/* One scalar per particle into scratch: the derived fields of io/particle_fields.h. */
+typedef enum derived { D_PRESSURE, D_Q, D_VOL_STRAIN, D_DEV_STRAIN } derived;
+
+static void fill_derived(double *out, const pm_particles *p, derived d)
+{
+    for (size_t i = 0; i < p->n; i++) {
+        const double *sg = p->stress + PM_NS * i;
+        double v, e;
+        switch (d) {
+        case D_PRESSURE: out[i] = pm_pf_pressure(sg); break;
+        case D_Q: out[i] = pm_pf_q(sg); break;
+        default:
+            pm_pf_log_strain(p->F + PM_NF * i, &v, &e);
+            out[i] = d == D_VOL_STRAIN ? v : e;
+            break;
+        }
+    }
+}
+
+int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratch, double t)
 {
     static const char *const stress_names[4] = { "xx", "yy", "zz", "xy" };
+    static const char *const f_names[PM_NF] = { "xx", "xy", "yx", "yy", "zz" };
     const pm_vtu_array arrays[] = {
         { "displacement", PM_VTU_F64, 3, NULL },
         { "velocity", PM_VTU_F64, 3, NULL },
@@ -131,9 +157,15 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         { "body", PM_VTU_I32, 1, NULL },
         { "mass", PM_VTU_F64, 1, NULL },
         { "volume", PM_VTU_F64, 1, NULL },
+        { "pressure", PM_VTU_F64, 1, NULL },
+        { "q", PM_VTU_F64, 1, NULL },
+        { "volumetric_strain", PM_VTU_F64, 1, NULL },
+        { "deviatoric_strain", PM_VTU_F64, 1, NULL },
+        { "deformation_gradient", PM_VTU_F64, PM_NF, f_names },
+        { "half_size", PM_VTU_F64, PM_DIM, NULL },
     };
     const size_t n = p->n;
-    const pm_vtu_piece pc = { n, n, n, arrays, sizeof arrays / sizeof arrays[0] };
+    const pm_vtu_piece pc = { n, n, n, arrays, sizeof arrays / sizeof arrays[0], &t };
     char tmp[4096];
     FILE *f = pm_atomic_fopen(path, tmp, sizeof tmp);
     if (!f)
@@ -159,6 +191,14 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         rc = pm_vtu_write_block(f, p->mass, n * sizeof(double));
     if (!rc)
         rc = pm_vtu_write_block(f, p->vol, n * sizeof(double));
+    for (int d = D_PRESSURE; !rc && d <= D_DEV_STRAIN; d++) {
+        fill_derived(scratch, p, (derived)d);
+        rc = pm_vtu_write_block(f, scratch, n * sizeof(double));
+    }
+    if (!rc)
+        rc = pm_vtu_write_block(f, p->F, PM_NF * n * sizeof(double));
+    if (!rc)
+        rc = pm_vtu_write_block(f, p->hsize, PM_DIM * n * sizeof(double));
     if (!rc) {
         fill_vec3(scratch, p->x, NULL, n);
         rc = pm_vtu_write_block(f, scratch, 3 * n * sizeof(double));
@@ -188,7 +228,38 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
     return pm_atomic_fclose(f, tmp, path, 1);
 }
 
-int pm_vtu_write_grid(const char *path, const pm_grid *g)
+/* The nodal arrays a grid frame carries, in the order of their blocks. */
+static size_t grid_arrays(const pm_vtu_grid_fields *gf, pm_vtu_array *a)
+{
+    size_t n = 0;
+    if (gf && gf->mass)
+        a[n++] = (pm_vtu_array){ "mass", PM_VTU_F64, 1, NULL };
+    if (gf && gf->velocity)
+        a[n++] = (pm_vtu_array){ "velocity", PM_VTU_F64, 3, NULL };
+    if (gf && gf->boundary)
+        a[n++] = (pm_vtu_array){ "boundary", PM_VTU_U8, 1, NULL };
+    if (gf && gf->contact)
+        a[n++] = (pm_vtu_array){ "contact", PM_VTU_I32, 1, NULL };
+    return n;
+}
+
+static int write_grid_fields(FILE *f, const pm_grid *g, const pm_vtu_grid_fields *gf, double *buf)
+{
+    int rc = PM_OK;
+    if (gf && gf->mass)
+        rc = pm_vtu_write_block(f, gf->mass, g->n_nodes * sizeof(double));
+    if (!rc && gf && gf->velocity) {
+        fill_vec3(buf, gf->velocity, NULL, g->n_nodes);
+        rc = pm_vtu_write_block(f, buf, 3 * g->n_nodes * sizeof(double));
+    }
+    if (!rc && gf && gf->boundary)
+        rc = pm_vtu_write_block(f, gf->boundary, g->n_nodes);
+    if (!rc && gf && gf->contact)
+        rc = pm_vtu_write_block(f, gf->contact, g->n_nodes * sizeof(int32_t));
+    return rc;
+}
+
+int pm_vtu_write_grid(const char *path, const pm_grid *g, const pm_vtu_grid_fields *gf, void *scratch)
 {
     const int has_cells = g->n_cells > 0 && g->conn && g->nodes_per_cell > 0;
     const size_t npc = has_cells ? (size_t)g->nodes_per_cell : 1;
@@ -198,17 +269,22 @@ int pm_vtu_write_grid(const char *path, const pm_grid *g)
     size_t need = 3 * g->n_nodes * sizeof(double);
     if (conn_len * sizeof(int64_t) > need)
         need = conn_len * sizeof(int64_t);
-    void *buf = malloc(need ? need : 1);
+    void *buf = scratch ? scratch : malloc(need ? need : 1);
     if (!buf)
         return pm_error_set(PM_ENOMEM, "cannot write '%s': out of memory (%zu bytes)", path, need);
-    const pm_vtu_piece pc = { g->n_nodes, n_cells, conn_len, NULL, 0 };
+    pm_vtu_array arrays[4];
+    const pm_vtu_piece pc = { g->n_nodes, n_cells, conn_len, arrays, grid_arrays(gf, arrays),
+                              gf ? gf->time : NULL };
     char tmp[4096];
     FILE *f = pm_atomic_fopen(path, tmp, sizeof tmp);
     if (!f) {
-        free(buf);
+        if (!scratch)
+            free(buf);
         return PM_EIO;
     }
     int rc = pm_vtu_write_header(f, &pc);
+    if (!rc)
+        rc = write_grid_fields(f, g, gf, buf);
     if (!rc) {
         fill_vec3(buf, g->x, NULL, g->n_nodes);
         rc = pm_vtu_write_block(f, buf, 3 * g->n_nodes * sizeof(double));
@@ -230,7 +306,8 @@ int pm_vtu_write_grid(const char *path, const pm_grid *g)
     }
     if (!rc)
         rc = pm_vtu_write_footer(f);
-    free(buf);
+    if (!scratch)
+        free(buf);
     if (rc) {
         fail_path(rc, path);
         pm_atomic_fclose(f, tmp, path, 0);

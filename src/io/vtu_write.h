@@ -7,6 +7,7 @@
 #define PMECH_IO_VTU_WRITE_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "pmech/grid.h"
@@ -31,6 +32,7 @@ typedef struct pm_vtu_piece {
     size_t conn_len;                /**< entries of the connectivity array */
     const pm_vtu_array *point_data; /**< point-data arrays */
     size_t n_point_data;            /**< their count */
+    const double *time;             /**< if not NULL, the simulated time, written as FieldData TimeValue */
 } pm_vtu_piece;
 
 /** Bytes of one element of @p t. */
@@ -54,18 +56,30 @@ int pm_vtu_write_footer(FILE *f);
 
 /**
  * @brief Write the particles as VTK_VERTEX cells (z = 0) with displacement, velocity, stress
- *        (xx, yy, zz, xy), plastic_strain, material, body, mass and volume, atomically to @p path.
+ *        (xx, yy, zz, xy), plastic_strain, material, body, mass, volume, pressure, q, volumetric_strain,
+ *        deviatoric_strain, deformation_gradient and half_size, and the time, atomically to @p path.
  * @param scratch suitably aligned workspace of at least 3 * max(n, 1) doubles (from malloc)
+ * @param t simulated time (FieldData TimeValue)
  * @return PM_OK or PM_EIO naming @p path
  */
-int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratch);
+int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratch, double t);
+
+/** Nodal fields of a grid frame (each NULL when not written). */
+typedef struct pm_vtu_grid_fields {
+    const double *mass;      /**< lumped nodal mass, 1 per node */
+    const double *velocity;  /**< nodal velocity, PM_DIM per node */
+    const uint8_t *boundary; /**< bit d: component d prescribed by a fixed or velocity condition */
+    const int32_t *contact;  /**< 1 + the contact surface a node touches, 0 for none */
+    const double *time;      /**< the simulated time (NULL: none written) */
+} pm_vtu_grid_fields;
 
 /**
  * @brief Write the background grid (VTK_QUAD or VTK_TRIANGLE cells, or VTK_VERTEX for a grid
- *        without cells) atomically to @p path.
+ *        without cells) atomically to @p path, with nodal fields when @p gf is not NULL.
+ * @param scratch workspace of at least 3 * n_nodes doubles, or NULL (then allocated here)
  * @return PM_OK, PM_ENOMEM or PM_EIO naming @p path
  */
-int pm_vtu_write_grid(const char *path, const pm_grid *g);
+int pm_vtu_write_grid(const char *path, const pm_grid *g, const pm_vtu_grid_fields *gf, void *scratch);
 
 /**
  * @brief Open "<path>.tmp" for writing (the name is stored in @p tmp).

@@ -41,6 +41,12 @@ EXPECTED = {  # name: (components, VTK data type or None for any floating type)
     "body": (1, vtk.VTK_INT),
     "mass": (1, None),
     "volume": (1, None),
+    "pressure": (1, None),
+    "q": (1, None),
+    "volumetric_strain": (1, None),
+    "deviatoric_strain": (1, None),
+    "deformation_gradient": (5, None),
+    "half_size": (2, None),
 }
 STRESS_COMPONENTS = ["xx", "yy", "zz", "xy"]
 
@@ -89,10 +95,15 @@ def read_vtu(path):
     return reader.GetOutput()
 
 
-def check_frame(path, n):
+def check_frame(path, n, t=None):
     ug = read_vtu(path)
     if ug is None:
         return
+    tv = ug.GetFieldData().GetArray("TimeValue")
+    if tv is None or tv.GetNumberOfTuples() != 1:
+        fail("%s: no TimeValue field" % path)
+    elif t is not None and tv.GetValue(0) != t:
+        fail("%s: TimeValue %r, the collection says %r" % (path, tv.GetValue(0), t))
     if ug.GetNumberOfPoints() != n:
         fail("%s: %d points, expected %d" % (path, ug.GetNumberOfPoints(), n))
     if ug.GetNumberOfCells() != n:
@@ -182,7 +193,7 @@ def main(argv):
         if not os.path.isfile(path):
             fail("%s lists %s, which does not exist" % (pvd, f))
             continue
-        check_frame(path, n)
+        check_frame(path, n, t)
     grid = os.path.join(d, "grid.vtu")
     if os.path.exists(grid):
         check_grid(grid)

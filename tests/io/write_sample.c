@@ -80,6 +80,8 @@ int main(int argc, char **argv)
         p.body[i] = p.material[i] = p.x[2 * i + 1] < 0.5 ? 0 : 1;
         p.vol[i] = p.vol0[i] = 1.0 / (double)(side * side);
         p.mass[i] = 2000.0 * p.vol[i];
+        p.F[PM_NF * i + PM_FXX] = p.F[PM_NF * i + PM_FYY] = p.F[PM_NF * i + PM_FZZ] = 1.0; /* undeformed */
+        p.hsize[PM_DIM * i] = p.hsize[PM_DIM * i + 1] = 0.5 / (double)side;
     }
     pm_output *o = NULL;
     int rc = pm_output_open(&o, dir, &c, &g, &p);
