@@ -146,6 +146,8 @@ typedef struct pm_case {
         double interval;             /**< default end_time / 100 */
         double probe_interval;       /**< 0 = every step */
         char pictures[PM_NAME_MAX];  /**< field of a PNG picture per frame (pm_field_from_name), "" = none */
+        double picture_range[2];     /**< fixed colour range of the pictures; NaN: one range over the run */
+        int picture_width;           /**< picture width in pixels (default 800) */
     } output;
     void *doc;                    /**< the JSON document the case was read from (private; pm_case_set edits it) */
 } pm_case;

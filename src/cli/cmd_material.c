@@ -8,6 +8,16 @@
 #include <stdio.h>
 #include <string.h>
 
+void pm_cmd_material_usage(FILE *f)
+{
+    fprintf(f, "usage: pmech material DRIVER.json [-o OUT.csv]\n"
+               "  Drive one material point along the driver file's path (docs/materials.md) and write CSV\n"
+               "  with the columns\n  %s\n"
+               "  -o, --output OUT.csv  write to OUT.csv instead of standard output\n"
+               "  -h, --help            this text\n",
+            PM_DRIVER_CSV_HEADER);
+}
+
 static int bad_usage(const char *what)
 {
     fprintf(stderr, "pmech material: %s\nusage: pmech material DRIVER.json [-o OUT.csv]\n", what);
@@ -23,10 +33,7 @@ int pm_cmd_material(int argc, char **argv)
                 return bad_usage("-o needs a file name");
             out = argv[i];
         } else if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            printf("usage: pmech material DRIVER.json [-o OUT.csv]\n"
-                   "drive one material point along the driver file's path; CSV columns\n"
-                   "%s\n(stdout unless -o; reference: docs/materials.md)\n",
-                   PM_DRIVER_CSV_HEADER);
+            pm_cmd_material_usage(stdout);
             return 0;
         } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
             char msg[256];

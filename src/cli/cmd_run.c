@@ -10,31 +10,32 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RUN_USAGE "usage: pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n"
+#define RUN_USAGE "pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n"
+
+void pm_cmd_run_usage(FILE *f)
+{
+    fprintf(f, "usage: " RUN_USAGE
+               "  Run the case file CASE.json (keys: docs/input.md) to its end time.\n"
+               "  -o, --output DIR  write results to DIR instead of the case's output.directory\n"
+               "  -q, --quiet       no progress line\n"
+               "  -v, --verbose     implicit runs: print every Newton iteration instead of the progress line\n"
+               "  --threads N       OpenMP threads (default: OMP_NUM_THREADS if set, else all cores, but one\n"
+               "                    for runs of fewer than 5,000 particles)\n"
+               "  -h, --help        this text\n"
+               "  Outputs: particles.pvd (open in ParaView) with one particles_NNNNNN.vtu per frame, grid.vtu,\n"
+               "  probes.csv, energy.csv, run.json; implicit runs add newton.log and reactions.csv; a case with\n"
+               "  analysis.strength_reduction writes strength_reduction.csv and one srf_<F>/ per trial.\n");
+}
 
 static int bad_usage(const char *what)
 {
-    fprintf(stderr, "pmech run: %s\n" RUN_USAGE, what);
+    fprintf(stderr, "pmech run: %s\nusage: " RUN_USAGE "(pmech run --help)\n", what);
     return 2;
 }
 
 static int help(void)
 {
-    printf(RUN_USAGE
-           "\n"
-           "Run the case file CASE.json (keys: docs/input.md) to its end time.\n"
-           "\n"
-           "  -o, --output DIR  write results to DIR instead of the case's output.directory\n"
-           "  -q, --quiet       no progress line\n"
-           "  -v, --verbose     implicit runs: print every Newton iteration instead of the progress line\n"
-           "  --threads N       OpenMP threads (default: OMP_NUM_THREADS if set, else all cores, but one\n"
-           "                    for runs of fewer than 5,000 particles)\n"
-           "  -h, --help        this text\n"
-           "\n"
-           "Outputs: particles.pvd (open in ParaView) with one particles_NNNNNN.vtu per frame, grid.vtu,\n"
-           "probes.csv, energy.csv, run.json; implicit runs add newton.log and reactions.csv; a case with\n"
-           "analysis.strength_reduction writes strength_reduction.csv and one srf_<F>/ per trial.\n"
-           "Exit codes: 0 success, 1 the simulation failed (outputs so far stay valid), 2 invalid input.\n");
+    pm_cmd_run_usage(stdout);
     return 0;
 }
 

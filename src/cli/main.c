@@ -1,4 +1,5 @@
-/* The pmech program: dispatches to sub-commands. */
+/* The pmech program: dispatches to sub-commands. `pmech --help` prints every command's own usage, so
+ * it lists every command and option there is. */
 #include "cli/commands.h"
 
 #include <stdio.h>
@@ -6,22 +7,23 @@
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "pmech %s - particle solver for large-deformation solid mechanics (MPM, GMM, RKPM)\n"
-            "\n"
-            "usage:\n"
-            "  pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N] (pmech run --help)\n"
-            "      run a case file; outputs (ParaView particles.pvd, grid.vtu, probes.csv,\n"
-            "      energy.csv, run.json; implicit runs add newton.log and reactions.csv) go to\n"
-            "      DIR (default: the case's output.directory); --verbose prints every Newton\n"
-            "      iteration of implicit runs instead of the progress line\n"
-            "  pmech material DRIVER.json [-o OUT.csv]       (pmech material --help)\n"
-            "      drive one material point along a stress/strain path and write CSV\n"
-            "  pmech --help | --version\n"
-            "\n"
-            "exit codes: 0 success, 1 the simulation failed, 2 invalid input\n"
-            "input reference: docs/input.md (installed: PREFIX/share/doc/pmech/input.md)\n",
+    fprintf(f, "pmech %s - particle solver for large-deformation solid mechanics (MPM, GMM, RKPM)\n\n"
+               "Commands (each also answers --help):\n\n",
             PMECH_VERSION);
+    pm_cmd_run_usage(f);
+    fputc('\n', f);
+    pm_cmd_material_usage(f);
+    fputc('\n', f);
+    pm_cmd_render_usage(f);
+    fprintf(f, "\n"
+               "usage: pmech --help | --version\n"
+               "\n"
+               "Threads: --threads N, else OMP_NUM_THREADS, else all cores (one below 5,000 particles).\n"
+               "Threads that wait yield their core (OMP_WAIT_POLICY=passive unless set), so a run on a busy\n"
+               "machine does not fight other programs for cores (docs/performance.md).\n"
+               "Exit codes: 0 success, 1 the simulation failed (outputs so far stay valid), 2 invalid input.\n"
+               "Documentation: docs/ (installed: PREFIX/share/doc/pmech): input.md (every case key),\n"
+               "tutorial.md (a first soil case), api.md (C and Python), materials.md, verification.md.\n");
 }
 
 int main(int argc, char **argv)
@@ -42,6 +44,8 @@ int main(int argc, char **argv)
         return pm_cmd_run(argc - 1, argv + 1);
     if (!strcmp(argv[1], "material"))
         return pm_cmd_material(argc - 1, argv + 1);
-    fprintf(stderr, "pmech: unknown command '%s' (commands: run, material; see pmech --help)\n", argv[1]);
+    if (!strcmp(argv[1], "render"))
+        return pm_cmd_render(argc - 1, argv + 1);
+    fprintf(stderr, "pmech: unknown command '%s' (commands: run, material, render; see pmech --help)\n", argv[1]);
     return 2;
 }

@@ -2,6 +2,7 @@
 #include "io/case_internal.h"
 
 #include "io/json_read.h"
+#include "pmech/render.h"
 #include "pmech/error.h"
 #include "pmech/grid.h"
 
@@ -12,8 +13,6 @@
 
 static const char *const bc_types[] = {"fixed", "velocity", "friction", NULL};
 static const char *const quantities[] = {"position", "displacement", "velocity", "stress", "plastic_strain", NULL};
-static const char *const picture_fields[] = {"body", "speed", "pressure", "plastic_strain", "syy", "displacement",
-                                             NULL};
 
 int pm_case_parse_bcs(pm_case *c, json_t *bcs)
 {
@@ -204,6 +203,8 @@ int pm_case_parse_output(pm_case *c, json_t *o)
     char def[PM_PATH_MAX + 8];
     snprintf(def, sizeof def, "%.*s.out", (int)(sizeof c->stem - 1), c->stem);
     c->output.interval = c->analysis.end_time / 100;
+    c->output.picture_range[0] = c->output.picture_range[1] = NAN;
+    c->output.picture_width = 800;
     if (!o) {
         snprintf(c->output.directory, sizeof c->output.directory, "%.*s", (int)(sizeof c->output.directory - 1), def);
         return PM_OK;
@@ -220,8 +221,8 @@ int pm_case_parse_output(pm_case *c, json_t *o)
     json_t *pic = json_object_get(o, "pictures");
     if (pic && !json_is_false(pic)) {
         int f;
-        pm_check(jr_enum(&cx, o, "pictures", 0, picture_fields, 0, &f));
-        snprintf(c->output.pictures, sizeof c->output.pictures, "%s", picture_fields[f]);
+        pm_check(jr_enum(&cx, o, "pictures", 0, pm_field_names(), 0, &f));
+        snprintf(c->output.pictures, sizeof c->output.pictures, "%s", pm_field_names()[f]);
     }
-    return PM_OK;
+    return pm_case_parse_picture_options(c, &cx, o);
 }

@@ -91,4 +91,9 @@ int pm_case_parse_probes(pm_case *c, json_t *ps);
 /** `output`: after the analysis, whose end time sets the default interval. */
 int pm_case_parse_output(pm_case *c, json_t *o);
 
+struct jr_ctx;
+
+/** `output.picture_range` and `output.picture_width` (case_pictures.c), called by pm_case_parse_output. */
+int pm_case_parse_picture_options(pm_case *c, const struct jr_ctx *cx, json_t *o);
+
 #endif

@@ -28,7 +28,8 @@ static const char *const bc_velocity[] = {"type", "boundary", "value", "until", 
 static const char *const bc_friction[] = {"type", "boundary", "coefficient", NULL};
 static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const probe_keys[] = {"name", "quantity", "point", "body", NULL};
-static const char *const output_keys[] = {"directory", "interval", "probe_interval", "pictures", NULL};
+static const char *const output_keys[] = {"directory", "interval", "probe_interval", "pictures", "picture_range",
+                                          "picture_width", NULL};
 
 static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_TOP] = {"", NULL, top_keys},

@@ -3,6 +3,7 @@
  * receive whole lines, so a run that stops at any point leaves valid files behind. */
 #include "io/output.h"
 #include "pmech/error.h"
+#include "io/run_pictures.h"
 #include "io/vtu_write.h"
 
 #include <dirent.h>
@@ -52,6 +53,7 @@ struct pm_output {
     char (*body_names)[PM_NAME_MAX];
     double probe_interval, last_probe_t;
     int probe_recorded;
+    pm_run_pictures *pics;  /* output.pictures: a PNG per frame */
 };
 
 static const char *const quantity_names[] = { "position", "displacement", "velocity", "stress",
@@ -429,6 +431,8 @@ int pm_output_open(pm_output **out, const char *dir, const pm_case *c, const pm_
         rc = join(path, o->dir, "grid.vtu");
         if (!rc)
             rc = pm_vtu_write_grid(path, g, NULL, NULL);
+        if (!rc)
+            rc = pm_run_pictures_open(&o->pics, c, o->dir, g);
     }
     if (!rc)
         rc = open_csvs(o);
@@ -466,6 +470,8 @@ int pm_output_frame(pm_output *o, double t, const pm_particles *p)
     pm_check(pm_vtu_write_particles(path, p, o->scratch, t));
     o->frame_t[o->n_frames++] = t;
     int rc = write_pvd(o);
+    if (!rc)
+        rc = pm_run_pictures_frame(o->pics, o->n_frames - 1, t, p);
     /* frames are where CSV readers may look: make every line so far visible */
     int r1 = csv_flush(&o->probes_csv), r2 = csv_flush(&o->energy_csv);
     return rc ? rc : r1 ? r1 : r2;
@@ -536,7 +542,10 @@ int pm_output_close(pm_output *o, const pm_run_summary *s)
 {
     if (!o)
         return PM_OK;
-    int rc = csv_close(&o->probes_csv);
+    int rc = pm_run_pictures_close(o->pics);
+    int r1 = csv_close(&o->probes_csv);
+    if (!rc)
+        rc = r1;
     int r2 = csv_close(&o->energy_csv);
     if (!rc)
         rc = r2;

@@ -21,6 +21,8 @@ typedef struct pm_output pm_output;
 typedef struct pm_run_summary {
     const char *version;            /**< pmech version */
     const char *case_file;          /**< the case file as given */
+    const char *title;              /**< the case's title (pictures redrawn later show it) */
+    const char *formulation;        /**< plane_strain, plane_stress or axisymmetric */
     long steps;                     /**< time steps taken */
     double dt_min, dt_max;          /**< smallest and largest step */
     double end_time;                /**< simulated time reached */

@@ -12,8 +12,7 @@
 static const double palette[6][3] = {{0.12, 0.47, 0.71}, {0.84, 0.15, 0.16}, {0.17, 0.63, 0.17},
                                      {1.00, 0.50, 0.05}, {0.58, 0.40, 0.74}, {0.55, 0.34, 0.29}};
 
-/* Tick spacing 1, 2 or 5 times a power of ten giving about n intervals over [lo, hi]. */
-static double nice_step(double lo, double hi, int n)
+double pm_plot_nice_step(double lo, double hi, int n)
 {
     const double raw = (hi - lo) / n;
     const double p = pow(10.0, floor(log10(raw)));
@@ -29,12 +28,12 @@ static void nice_range(double *lo, double *hi, double *step)
         *lo -= d;
         *hi += d;
     }
-    *step = nice_step(*lo, *hi, 6);
+    *step = pm_plot_nice_step(*lo, *hi, 6);
     *lo = floor(*lo / *step + 1e-9) * *step;
     *hi = ceil(*hi / *step - 1e-9) * *step;
 }
 
-static void fmt_tick(double v, double step, char *buf, size_t n)
+void pm_plot_format_tick(double v, double step, char *buf, size_t n)
 {
     if (fabs(v) < 1e-12 * step)
         v = 0;
@@ -98,7 +97,7 @@ int pm_plot_lines(const char *png, const pm_plot_series *s, size_t ns, const pm_
         cairo_move_to(cr, floor(PX(v)) + 0.5, B);
         cairo_line_to(cr, floor(PX(v)) + 0.5, B + 0.4 * fs);
         cairo_stroke(cr);
-        fmt_tick(v, xs, buf, sizeof buf);
+        pm_plot_format_tick(v, xs, buf, sizeof buf);
         cairo_text_extents(cr, buf, &te);
         cairo_move_to(cr, PX(v) - te.width / 2 - te.x_bearing, B + 0.6 * fs + te.height);
         cairo_show_text(cr, buf);
@@ -112,7 +111,7 @@ int pm_plot_lines(const char *png, const pm_plot_series *s, size_t ns, const pm_
         cairo_move_to(cr, L - 0.4 * fs, floor(PY(v)) + 0.5);
         cairo_line_to(cr, L, floor(PY(v)) + 0.5);
         cairo_stroke(cr);
-        fmt_tick(v, ys, buf, sizeof buf);
+        pm_plot_format_tick(v, ys, buf, sizeof buf);
         cairo_text_extents(cr, buf, &te);
         cairo_move_to(cr, L - 0.6 * fs - te.width - te.x_bearing, PY(v) + te.height / 2);
         cairo_show_text(cr, buf);

@@ -59,6 +59,21 @@ int pm_plot_lines(const char *png, const pm_plot_series *s, size_t ns, const pm_
 int pm_plot_csv(const char *csv, const char *xcol, double xscale, const char *const *ycols,
                 double yscale, size_t ny, const char *png, const pm_plot_opts *o);
 
+/**
+ * @brief Tick spacing 1, 2 or 5 times a power of ten giving about @p n intervals over [lo, hi].
+ * @return the spacing (> 0 for hi > lo)
+ */
+double pm_plot_nice_step(double lo, double hi, int n);
+
+/**
+ * @brief A tick label: as many decimals as the spacing @p step needs, %g form for very large or small values.
+ * @param v the tick value
+ * @param step the spacing of the ticks
+ * @param buf receives the text
+ * @param n size of @p buf
+ */
+void pm_plot_format_tick(double v, double step, char *buf, size_t n);
+
 #ifdef __cplusplus
 }
 #endif

@@ -4,7 +4,6 @@
 #include "solver/implicit.h"
 #include "io/output.h"
 #include "io/progress.h"
-#include "pmech/render.h"
 
 #include <math.h>
 #include <omp.h>
@@ -33,15 +32,8 @@ static double next_dt(const pm_sim *s)
 /* One output frame: the VTU (and PVD) and, when asked for, a PNG picture of the same state. */
 static int write_frame(pm_output *out, const pm_sim *s, const char *dir, int *frame)
 {
+    (void)dir;
     pm_check(pm_output_frame(out, s->t, &s->p));
-    const char *field = s->c->output.pictures;
-    if (field[0]) {
-        char path[PM_PATH_MAX + 32], title[400];
-        snprintf(path, sizeof path, "%s/particles_%06d.png", dir, *frame);
-        snprintf(title, sizeof title, "%s   t = %.4g s   %s", s->c->title, s->t, field);
-        int f = pm_field_from_name(field);
-        pm_check(pm_render_particles(path, pm_sim_frame_grid(s), &s->p, f < 0 ? PM_FIELD_BODY : (pm_field)f, 800, title));
-    }
     (*frame)++;
     return PM_OK;
 }
@@ -239,6 +231,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_run_summary sum = {
         .version = PMECH_VERSION,
         .case_file = c->file,
+        .title = c->title,
+        .formulation = c->formulation == PM_AXISYMMETRIC ? "axisymmetric"
+                       : c->formulation == PM_PLANE_STRESS ? "plane_stress" : "plane_strain",
         .steps = s->step,
         .dt_min = isfinite(dt_min) ? dt_min : 0,
         .dt_max = dt_max,

@@ -26,6 +26,16 @@ expect_exit 0 "run --help" "$PMECH" run --help
 check "run --help lists --threads" has "--threads N" out.txt
 expect_exit 0 "material --help" "$PMECH" material --help
 check "material --help gives usage" has "pmech material DRIVER.json" out.txt
+expect_exit 0 "render --help" "$PMECH" render --help
+check "render --help lists --field" has "--field F" out.txt
+"$PMECH" --help > all.txt
+for cmd in run material render; do
+  "$PMECH" $cmd --help > sub.txt
+  check "pmech --help holds every line of pmech $cmd --help" sh -c 'grep -v "^$" sub.txt | while IFS= read -r l; do grep -qxF -- "$l" all.txt || exit 1; done'
+done
+expect_exit 2 "render without a run" "$PMECH" render nowhere --field speed
+check "render says what it looked for" has "nowhere" err.txt
+expect_exit 2 "render without a field" "$PMECH" render . --quiet
 expect_exit 2 "no arguments" "$PMECH"
 expect_exit 2 "unknown command" "$PMECH" frobnicate
 expect_exit 2 "missing case file" "$PMECH" run does-not-exist.json
@@ -72,6 +82,13 @@ check "VTK reads every frame" python3 "$SRC/tests/io/vtk_readback.py" disks.out 
 check "probes.csv header" sh -c 'head -1 disks.out/probes.csv | grep -q "^time,lower.vx,lower.vy,upper.vx,upper.vy$"'
 check "energy.csv header" sh -c 'head -1 disks.out/energy.csv | grep -q "^time,kinetic,strain,gravity,total$"'
 check "run.json speed" python3 -c "import json,sys; r=json.load(open('disks.out/run.json')); sys.exit(0 if r['particle_steps_per_second']>0 and r['steps']>0 else 1)"
+
+# Pictures redrawn from the frames of that run: one per frame, any field.
+frames=$(python3 -c "import json; print(json.load(open('disks.out/run.json'))['frames'])")
+expect_exit 0 "render q" "$PMECH" render disks.out --field q -o pics --quiet
+check "one picture per frame" sh -c "[ \$(ls pics/q_*.png | wc -l) -eq $frames ]"
+expect_exit 2 "render an unknown field" "$PMECH" render disks.out --field nonsense -o pics --quiet
+check "lists the fields" has "deviatoric_strain" err.txt
 
 if [ $fail -eq 0 ]; then echo "all CLI checks passed"; fi
 exit $fail
