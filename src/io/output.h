@@ -55,7 +55,7 @@ int pm_output_frame(pm_output *o, double t, const pm_particles *p);
 /** @brief Append one row of probe values at time @p t to probes.csv (no-op without probes). */
 int pm_output_probes(pm_output *o, double t, const pm_particles *p);
 
-/** @brief Append `time,kinetic,strain,gravity,total` to energy.csv. */
+/** @brief Append `time,kinetic,strain,gravity,total` to energy.csv (nothing when the last row has this time). */
 int pm_output_energy(pm_output *o, double t, double kinetic, double strain, double gravity);
 
 /** @brief Particle index followed by probe @p k (-1 for a body probe). */

@@ -10,6 +10,7 @@
 
 #define TTY_PERIOD 0.2  /* seconds between redraws on a terminal */
 #define LOG_PERIOD 10.0 /* seconds between lines otherwise */
+#define PACE_MEMORY 30.0 /* wall seconds over which the rate of simulated time is averaged */
 
 double pm_wall_seconds(void)
 {
@@ -27,9 +28,11 @@ void pm_progress_begin(pm_progress *pg, FILE *out, double end_time, size_t parti
     pg->end_time = end_time;
     pg->particles = particles;
     pg->wall_start = pm_wall_seconds();
-    pg->last_print = pg->wall_start;
+    pg->last_print = pg->last_wall = pg->wall_start;
     pg->last_step = 0;
-    pg->last_wall = pg->wall_start;
+    pg->last_loop = pg->last_t = 0;
+    pg->log_pace = 0;
+    pg->have_pace = 0;
 }
 
 /* h:mm:ss, or "-:--:--" when unknown */
@@ -57,17 +60,32 @@ static void print_line(const pm_progress *pg, long step, double t, const char *l
             rate * 1e-6);
 }
 
-void pm_progress_update(pm_progress *pg, long step, double t)
+/* Fold the interval since the last sample into the average pace (wall seconds per simulated second). */
+static void sample_pace(pm_progress *pg, double t, double now)
 {
-    if (pg->quiet)
+    const double dw = now - pg->last_wall, dt = t - pg->last_t;
+    if (!(dw > 0) || !(dt > 0))
         return;
-    const double now = pm_wall_seconds();
-    if (now - pg->last_print < (pg->tty ? TTY_PERIOD : LOG_PERIOD))
+    const double lp = log(dw / dt);
+    if (!pg->have_pace) {
+        pg->log_pace = lp;
+        pg->have_pace = 1;
+    } else {
+        pg->log_pace += (1 - exp(-dw / PACE_MEMORY)) * (lp - pg->log_pace);
+    }
+    pg->last_wall = now;
+    pg->last_t = t;
+}
+
+void pm_progress_update_at(pm_progress *pg, long step, double t, double loop_seconds, double now)
+{
+    if (pg->quiet || now - pg->last_print < (pg->tty ? TTY_PERIOD : LOG_PERIOD))
         return;
-    const double elapsed = now - pg->wall_start;
-    const double eta = t > 0 && pg->end_time > t ? elapsed * (pg->end_time - t) / t : t > 0 ? 0.0 : -1.0;
-    const double dw = now - pg->last_wall;
-    const double rate = dw > 0 ? (double)pg->particles * (double)(step - pg->last_step) / dw : 0.0;
+    sample_pace(pg, t, now);
+    const double left = pg->end_time - t;
+    const double eta = !pg->have_pace ? -1.0 : left > 0 ? left * exp(pg->log_pace) : 0.0;
+    const double dl = loop_seconds - pg->last_loop;
+    const double rate = dl > 0 ? (double)pg->particles * (double)(step - pg->last_step) / dl : 0.0;
     if (pg->tty)
         fputc('\r', pg->out);
     print_line(pg, step, t, "ETA", eta, rate);
@@ -75,22 +93,33 @@ void pm_progress_update(pm_progress *pg, long step, double t)
     fputs(pg->tty ? "\033[K" : "\n", pg->out);
     fflush(pg->out);
     pg->last_print = now;
-    pg->last_wall = now;
     pg->last_step = step;
+    pg->last_loop = loop_seconds;
 }
 
-void pm_progress_end(pm_progress *pg, long step, double t)
+void pm_progress_update(pm_progress *pg, long step, double t, double loop_seconds)
 {
     if (pg->quiet)
         return;
-    const double now = pm_wall_seconds(), elapsed = now - pg->wall_start;
-    const double rate = elapsed > 0 ? (double)pg->particles * (double)step / elapsed : 0.0;
+    pm_progress_update_at(pg, step, t, loop_seconds, pm_wall_seconds());
+}
+
+void pm_progress_end_at(pm_progress *pg, long step, double t, double loop_seconds, double now)
+{
+    if (pg->quiet)
+        return;
+    const double rate = loop_seconds > 0 ? (double)pg->particles * (double)step / loop_seconds : 0.0;
     if (pg->tty)
         fputc('\r', pg->out);
-    print_line(pg, step, t, "wall", elapsed, rate);
+    print_line(pg, step, t, "wall", now - pg->wall_start, rate);
     fputs(pg->tty ? "\033[K\n" : "\n", pg->out);
     fflush(pg->out);
     pg->last_print = now;
-    pg->last_wall = now;
     pg->last_step = step;
+    pg->last_loop = loop_seconds;
+}
+
+void pm_progress_end(pm_progress *pg, long step, double t, double loop_seconds)
+{
+    pm_progress_end_at(pg, step, t, loop_seconds, pm_wall_seconds());
 }

@@ -202,7 +202,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             if (rc)
                 break;
         }
-        pm_progress_update(&pg, s->step, s->t);
+        pm_progress_update(&pg, s->step, s->t, loop_seconds);
     }
     if (!rc && out && last_frame_t < s->t) {
         rc = write_frame(out, s, dir, &frame);
@@ -226,7 +226,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         st->max_displacement = max_displacement(&s->p);
         st->wall_seconds = pm_wall_seconds() - wall0;
     }
-    pm_progress_end(&pg, s->step, s->t);
+    pm_progress_end(&pg, s->step, s->t, loop_seconds);
     close_implicit_files(&imf);
     pm_run_summary sum = {
         .version = PMECH_VERSION,

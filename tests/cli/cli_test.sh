@@ -81,6 +81,7 @@ n=$(python3 -c "import json; print(json.load(open('disks.out/run.json'))['partic
 check "VTK reads every frame" python3 "$SRC/tests/io/vtk_readback.py" disks.out "$n"
 check "probes.csv header" sh -c 'head -1 disks.out/probes.csv | grep -q "^time,lower.vx,lower.vy,upper.vx,upper.vy$"'
 check "energy.csv header" sh -c 'head -1 disks.out/energy.csv | grep -q "^time,kinetic,strain,gravity,total$"'
+check "energy.csv has one row per time" sh -c '[ -z "$(cut -d, -f1 disks.out/energy.csv | sort | uniq -d)" ]'
 check "run.json speed" python3 -c "import json,sys; r=json.load(open('disks.out/run.json')); sys.exit(0 if r['particle_steps_per_second']>0 and r['steps']>0 else 1)"
 
 # Pictures redrawn from the frames of that run: one per frame, any field.

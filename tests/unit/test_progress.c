@@ -1,10 +1,12 @@
-/* Progress lines: format, cadence on a terminal and in a log, silence when quiet. */
+/* Progress lines: format, cadence on a terminal and in a log, the time loop's speed, an ETA that
+ * follows the recent pace, silence when quiet. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <math.h>
 #include <regex.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,44 +48,68 @@ static void wall_clock_is_monotonic(void **state)
     assert_true(b >= a);
 }
 
+/* A log line every 10 s. The speed counts the time loop only: 1000 steps of 1000 particles in 1 s of
+ * loop time are 1 M particle-steps/s, though 10 s of wall time passed (the rest went to output). Half
+ * way after 10 s of wall time: 10 s left. */
 static void log_lines_every_ten_seconds(void **state)
 {
     (void)state;
     FILE *f = tmpfile();
     assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 2.0, 1000000, 0);
+    pm_progress_begin(&pg, f, 2.0, 1000, 0);
     assert_int_equal(pg.tty, 0); /* a regular file is not a terminal */
+    const double w0 = pg.wall_start;
     /* straight after begin: nothing */
     for (long s = 1; s <= 1000; s++)
-        pm_progress_update(&pg, s, 1e-3 * (double)s);
+        pm_progress_update_at(&pg, s, 1e-3 * (double)s, 1e-3 * (double)s, w0 + 1e-3 * (double)s);
     char *t = contents(f);
     assert_string_equal(t, "");
     free(t);
-    /* 10 s later (pretend): one line; half way after 10 s of wall time -> 10 s left; 100 steps of
-     * a million particles in those 10 s -> 10 M particle-steps/s */
-    double now = pm_wall_seconds();
-    pg.wall_start = now - 10.0;
-    pg.last_print = now - 10.5;
-    pg.last_wall = now - 10.0;
-    pg.last_step = 900;
-    pm_progress_update(&pg, 1000, 1.0);
+    pm_progress_update_at(&pg, 1000, 1.0, 1.0, w0 + 10.0);
     t = contents(f);
     assert_true(matches(t, "^" LINE_RE "ETA [0-9]+:[0-9]{2}:[0-9]{2}" RATE_RE "\n$"));
-    assert_non_null(strstr(t, "step 1000  t = 1.000e+00 s  50.0 %  ETA 0:00:10  10 M particle-steps/s\n"));
+    assert_non_null(strstr(t, "step 1000  t = 1.000e+00 s  50.0 %  ETA 0:00:10  1 M particle-steps/s\n"));
     assert_null(strchr(t, '\r'));
     free(t);
     /* right after a line: quiet again */
-    pm_progress_update(&pg, 1001, 1.001);
+    pm_progress_update_at(&pg, 1001, 1.001, 1.001, w0 + 10.5);
     t = contents(f);
     assert_int_equal(strchr(t, '\n') - t + 1, (long)strlen(t));
     free(t);
-    pm_progress_end(&pg, 2000, 2.0);
+    /* the end: the whole wall time, and the loop's speed over the run (2000 steps in 4 s: 0.5 M) */
+    pm_progress_end_at(&pg, 2000, 2.0, 4.0, w0 + 20.0);
     t = contents(f);
     const char *last = strchr(t, '\n') + 1;
     assert_true(matches(last, "^" LINE_RE "wall [0-9]+:[0-9]{2}:[0-9]{2}" RATE_RE "\n$"));
-    assert_non_null(strstr(last, "step 2000  t = 2.000e+00 s  100.0 %  wall 0:00:10  "));
+    assert_non_null(strstr(last, "step 2000  t = 2.000e+00 s  100.0 %  wall 0:00:20  0.5 M particle-steps/s\n"));
     free(t);
+    fclose(f);
+}
+
+/* The ETA of a run whose step shrinks: 1 simulated second in the first 10 s, then 1e-3 s per 10 s. After
+ * two minutes of the slow pace the ETA must be within 15 % of what that pace needs for the rest (the
+ * average is over logarithms of the pace with a 30 s memory: the fast start keeps exp(-4) of the weight,
+ * a factor 1000^0.018 = 1.13). An ETA from the whole run's average would say 2 minutes instead of 2.7 h. */
+static void eta_follows_a_shrinking_step(void **state)
+{
+    (void)state;
+    FILE *f = tmpfile();
+    assert_non_null(f);
+    pm_progress pg;
+    pm_progress_begin(&pg, f, 2.0, 10, 0);
+    const double w0 = pg.wall_start;
+    double t = 1.0, w = w0 + 10.0;
+    pm_progress_update_at(&pg, 100, t, 1.0, w);
+    for (int k = 0; k < 12; k++) {
+        t += 1e-3;
+        w += 10.0;
+        pm_progress_update_at(&pg, 101 + k, t, 1.0, w);
+    }
+    const double want = (2.0 - t) * 1e4; /* seconds left at 10 s per 1e-3 s */
+    const double eta = (2.0 - t) * exp(pg.log_pace);
+    if (fabs(eta / want - 1) > 0.15)
+        fail_msg("ETA %.0f s, the slow pace needs %.0f s", eta, want);
     fclose(f);
 }
 
@@ -95,15 +121,14 @@ static void terminal_redraws_one_line(void **state)
     pm_progress pg;
     pm_progress_begin(&pg, f, 1.0, 10, 0);
     pg.tty = 1; /* as if stderr were a terminal */
-    pm_progress_update(&pg, 1, 0.1); /* within 0.2 s of begin: nothing */
+    pm_progress_update_at(&pg, 1, 0.1, 0.01, pg.wall_start + 0.1); /* within 0.2 s of begin: nothing */
     char *t = contents(f);
     assert_string_equal(t, "");
     free(t);
-    pg.last_print -= 0.25;
-    pm_progress_update(&pg, 2, 0.2);
-    pg.last_print -= 0.25;
-    pm_progress_update(&pg, 3, 0.3);
-    pm_progress_end(&pg, 10, 1.0);
+    const double w0 = pg.wall_start;
+    pm_progress_update_at(&pg, 2, 0.2, 0.1, w0 + 0.25);
+    pm_progress_update_at(&pg, 3, 0.3, 0.2, w0 + 0.5);
+    pm_progress_end_at(&pg, 10, 1.0, 0.5, w0 + 1.0);
     t = contents(f);
     /* three redraws of the same line, each clearing the rest of it; a newline only at the end */
     assert_true(matches(t, "^\r" LINE_RE "ETA [^\r\n]*" RATE_RE "\033\\[K"
@@ -121,9 +146,8 @@ static void quiet_prints_nothing(void **state)
     assert_non_null(f);
     pm_progress pg;
     pm_progress_begin(&pg, f, 1.0, 10, 1);
-    pg.last_print -= 100;
-    pm_progress_update(&pg, 5, 0.5);
-    pm_progress_end(&pg, 10, 1.0);
+    pm_progress_update_at(&pg, 5, 0.5, 1.0, pg.wall_start + 100);
+    pm_progress_end(&pg, 10, 1.0, 2.0);
     char *t = contents(f);
     assert_string_equal(t, "");
     free(t);
@@ -137,8 +161,7 @@ static void unknown_eta_before_time_advances(void **state)
     assert_non_null(f);
     pm_progress pg;
     pm_progress_begin(&pg, f, 1.0, 10, 0);
-    pg.last_print -= 11;
-    pm_progress_update(&pg, 0, 0.0);
+    pm_progress_update_at(&pg, 0, 0.0, 0.0, pg.wall_start + 11);
     char *t = contents(f);
     assert_non_null(strstr(t, "0.0 %  ETA -:--:--  "));
     free(t);
@@ -150,6 +173,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(wall_clock_is_monotonic),
         cmocka_unit_test(log_lines_every_ten_seconds),
+        cmocka_unit_test(eta_follows_a_shrinking_step),
         cmocka_unit_test(terminal_redraws_one_line),
         cmocka_unit_test(quiet_prints_nothing),
         cmocka_unit_test(unknown_eta_before_time_advances),
