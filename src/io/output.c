@@ -258,9 +258,12 @@ static int join(char *buf, const char *dir, const char *name)
  * followed by .tmp */
 static int is_frame_name(const char *s)
 {
-    if (strncmp(s, "particles_", 10) != 0)
+    if (strncmp(s, "grid_", 5) == 0)
+        s += 5;
+    else if (strncmp(s, "particles_", 10) == 0)
+        s += 10;
+    else
         return 0;
-    s += 10;
     const char *d = s;
     while (*s >= '0' && *s <= '9')
         s++;
@@ -274,7 +277,7 @@ static int is_frame_name(const char *s)
 static int remove_stale(const char *dir, int keep_probes)
 {
     static const char *const names[] = { "particles.pvd", "run.json", "particles.pvd.tmp",
-                                         "run.json.tmp", "grid.vtu.tmp", "probes.csv" };
+                                         "run.json.tmp", "grid.vtu.tmp", "probes.csv", "grid.pvd", "grid.pvd.tmp" };
     DIR *d = opendir(dir);
     if (!d)
         return pm_error_set(PM_EIO, "cannot read directory '%s': %s", dir, strerror(errno));
@@ -295,8 +298,8 @@ static int remove_stale(const char *dir, int keep_probes)
     return rc;
 }
 
-/* particles.pvd listing every frame so far. */
-static int write_pvd(const pm_output *o)
+/* <prefix>.pvd listing every frame so far (files <prefix>_NNNNNN.vtu). */
+static int write_pvd_of(const pm_output *o, const char *prefix)
 {
     static const char head[] = "<?xml version=\"1.0\"?>\n"
                                "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
@@ -311,23 +314,26 @@ static int write_pvd(const pm_output *o)
     len = sizeof head - 1;
     for (size_t k = 0; k < o->n_frames; k++) {
         int n = snprintf(buf + len, per,
-                         "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"particles_%06zu.vtu\"/>\n",
-                         o->frame_t[k], k);
+                         "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"%s_%06zu.vtu\"/>\n",
+                         o->frame_t[k], prefix, k);
         if (n < 0 || (size_t)n >= per) {
             free(buf);
-            return pm_error_set(PM_EINTERNAL, "particles.pvd: line %zu does not fit", k);
+            return pm_error_set(PM_EINTERNAL, "%s.pvd: line %zu does not fit", prefix, k);
         }
         len += (size_t)n;
     }
     memcpy(buf + len, tail, sizeof tail - 1);
     len += sizeof tail - 1;
-    char path[OUT_PATH_MAX];
-    int rc = join(path, o->dir, "particles.pvd");
+    char path[OUT_PATH_MAX], name[64];
+    snprintf(name, sizeof name, "%s.pvd", prefix);
+    int rc = join(path, o->dir, name);
     if (!rc)
         rc = pm_write_file_atomic(path, buf, len);
     free(buf);
     return rc;
 }
+
+static int write_pvd(const pm_output *o) { return write_pvd_of(o, "particles"); }
 
 /* ---- public API --------------------------------------------------------------------------- */
 
@@ -477,6 +483,17 @@ int pm_output_frame(pm_output *o, double t, const pm_particles *p)
     /* frames are where CSV readers may look: make every line so far visible */
     int r1 = csv_flush(&o->probes_csv), r2 = csv_flush(&o->energy_csv);
     return rc ? rc : r1 ? r1 : r2;
+}
+
+int pm_output_grid_frame(pm_output *o, const pm_grid *g, const pm_vtu_grid_fields *gf)
+{
+    if (o->n_frames == 0)
+        return pm_error_set(PM_EINTERNAL, "a grid frame before its particle frame");
+    char name[64], path[OUT_PATH_MAX];
+    snprintf(name, sizeof name, "grid_%06zu.vtu", o->n_frames - 1);
+    pm_check(join(path, o->dir, name));
+    pm_check(pm_vtu_write_grid(path, g, gf, NULL));
+    return write_pvd_of(o, "grid");
 }
 
 /* Re-find a followed particle after the particle arrays were reordered: by its initial

@@ -52,6 +52,14 @@ int pm_output_open(pm_output **o, const char *dir, const pm_case *c, const pm_gr
 /** @brief Write particles_NNNNNN.vtu for time @p t and rewrite particles.pvd listing all frames. */
 int pm_output_frame(pm_output *o, double t, const pm_particles *p);
 
+struct pm_vtu_grid_fields;
+
+/**
+ * @brief Write grid_NNNNNN.vtu beside the particle frame just written (same number and time): the nodes the
+ *        simulation interpolates from with their nodal fields, and rewrite grid.pvd listing all of them.
+ */
+int pm_output_grid_frame(pm_output *o, const pm_grid *g, const struct pm_vtu_grid_fields *gf);
+
 /** @brief Append one row of probe values at time @p t to probes.csv (no-op without probes). */
 int pm_output_probes(pm_output *o, double t, const pm_particles *p);
 

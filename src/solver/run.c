@@ -1,5 +1,6 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "sim_internal.h"
+#include "solver/grid_output.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
 #include "io/output.h"
@@ -34,6 +35,7 @@ static int write_frame(pm_output *out, const pm_sim *s, const char *dir, int *fr
 {
     (void)dir;
     pm_check(pm_output_frame(out, s->t, &s->p));
+    pm_check(pm_sim_grid_frame(out, s));
     (*frame)++;
     return PM_OK;
 }

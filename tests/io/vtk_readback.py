@@ -6,8 +6,11 @@ usage: vtk_readback.py DIR N_PARTICLES
 Checks that particles.pvd is a valid Collection whose every listed frame exists, and that VTK's
 vtkXMLUnstructuredGridReader reads each frame with N_PARTICLES points and N_PARTICLES vertex cells
 and the point arrays displacement (3), velocity (3), stress (4: xx, yy, zz, xy), plastic_strain,
-material (Int32), body (Int32), mass and volume, each with one finite tuple per particle. grid.vtu,
-when present, must read with at least one point and one cell, and no temporary file may be left.
+material (Int32), body (Int32), mass and volume (and the derived fields), each with one finite tuple per
+particle. grid.vtu, when present, must read with at least one point and one cell; grid.pvd, when present,
+must list one grid frame per particle frame with the same times, each with the flags boundary (UInt8) and
+contact (Int32) and, after the first, a nodal mass whose sum is the particles' (the shape functions are a
+partition of unity: equal to 1e-9 relative, summation rounding). No temporary file may be left.
 Exit status: 0 all good, 1 a check failed, 2 bad usage.
 """
 import math
@@ -95,10 +98,15 @@ def read_vtu(path):
     return reader.GetOutput()
 
 
+def array_sum(arr):
+    return sum(arr.GetValue(i) for i in range(arr.GetNumberOfTuples() * arr.GetNumberOfComponents()))
+
+
 def check_frame(path, n, t=None):
+    """Checks one particle frame; returns the sum of its particle masses (None when unreadable)."""
     ug = read_vtu(path)
     if ug is None:
-        return
+        return None
     tv = ug.GetFieldData().GetArray("TimeValue")
     if tv is None or tv.GetNumberOfTuples() != 1:
         fail("%s: no TimeValue field" % path)
@@ -136,6 +144,41 @@ def check_frame(path, n, t=None):
             got = [arr.GetComponentName(k) for k in range(ncomp)]
             if got != STRESS_COMPONENTS:
                 fail("%s: stress component names %s, expected %s" % (path, got, STRESS_COMPONENTS))
+    mass = pd.GetArray("mass")
+    return array_sum(mass) if mass is not None else None
+
+
+def check_grid_frames(d, frames):
+    """grid.pvd: one grid frame per particle frame (time, particle mass sum), nodal mass conserved."""
+    pvd = os.path.join(d, "grid.pvd")
+    try:
+        sets = ET.parse(pvd).getroot().findall("./Collection/DataSet")
+    except (OSError, ET.ParseError) as e:
+        fail("%s: %s" % (pvd, e))
+        return
+    if len(sets) != len(frames):
+        fail("%s lists %d frames, particles.pvd %d" % (pvd, len(sets), len(frames)))
+        return
+    for k, (ds, (t, pmass)) in enumerate(zip(sets, frames)):
+        path = os.path.join(d, ds.get("file"))
+        if float(ds.get("timestep")) != t:
+            fail("%s: time %s, the particle frame's %r" % (path, ds.get("timestep"), t))
+        check_grid(path)
+        ug = read_vtu(path)
+        if ug is None:
+            continue
+        pd = ug.GetPointData()
+        for name, vtype in (("boundary", vtk.VTK_UNSIGNED_CHAR), ("contact", vtk.VTK_INT)):
+            arr = pd.GetArray(name)
+            if arr is None or arr.GetDataType() != vtype:
+                fail("%s: no %s array of the right type" % (path, name))
+        mass = pd.GetArray("mass")
+        if k == 0:
+            continue
+        if mass is None:
+            fail("%s: no nodal mass" % path)
+        elif pmass is not None and abs(array_sum(mass) - pmass) > 1e-9 * abs(pmass):
+            fail("%s: nodal mass %.17g, particle mass %.17g" % (path, array_sum(mass), pmass))
 
 
 def check_grid(path):
@@ -176,6 +219,7 @@ def main(argv):
     if not sets:
         fail("%s: lists no frame" % pvd)
     last = -math.inf
+    frames = []
     for ds in sets:
         f = ds.get("file")
         try:
@@ -193,10 +237,12 @@ def main(argv):
         if not os.path.isfile(path):
             fail("%s lists %s, which does not exist" % (pvd, f))
             continue
-        check_frame(path, n, t)
+        frames.append((t, check_frame(path, n, t)))
     grid = os.path.join(d, "grid.vtu")
     if os.path.exists(grid):
         check_grid(grid)
+    if os.path.exists(os.path.join(d, "grid.pvd")):
+        check_grid_frames(d, frames)
     tmp = [f for f in os.listdir(d) if f.endswith(".tmp")]
     if tmp:
         fail("%s: temporary files left: %s" % (d, ", ".join(sorted(tmp))))
