@@ -172,6 +172,20 @@ int pm_case_load_buffer(const char *text, size_t len, const char *name, pm_case 
 /** @brief Free what a case owns and zero it. Safe on a zeroed struct. */
 void pm_case_free(pm_case *c);
 
+/** Longest warning message, with its terminating zero. */
+#define PM_WARNING_LEN 320
+
+/**
+ * @brief Values of a case that are valid but almost surely mistakes: a stiffness below 1 kPa (moduli are
+ *        in pascals), an angle between 0 and 2 degrees (given in radians?), gravity pointing up with a
+ *        geostatic initial stress. `pmech run` prints them and run.json lists them; none stops a run.
+ * @param c the case
+ * @param out receives up to @p cap messages, each naming the key path and the value
+ * @param cap room in @p out (0 to count only)
+ * @return the number of warnings (may exceed @p cap)
+ */
+size_t pm_case_warnings(const pm_case *c, char (*out)[PM_WARNING_LEN], size_t cap);
+
 /*
  * Changing a loaded case by key path. A path names a key as docs/input.md does, with [i] for the
  * i-th entry of a list: "materials[0].friction_angle", "analysis.gravity[1]", "bodies[0].shape.max".

@@ -38,6 +38,8 @@ typedef struct pm_run_summary {
     long step_cuts;                 /**< implicit: halvings of steps that did not converge */
     double assemble_seconds;        /**< implicit: particle updates and assembly */
     double solve_seconds;           /**< implicit: sparse factorisations and solves */
+    const char (*warnings)[PM_WARNING_LEN]; /**< warnings of the run (pm_case_warnings and the run's own) */
+    size_t n_warnings;              /**< their count */
 } pm_run_summary;
 
 /**

@@ -62,6 +62,10 @@ int pm_run_json_write(const char *path, const pm_run_summary *s, const pm_probe_
         bad |= put(root, "frames", json_integer((json_int_t)frames));
         bad |= put(root, "exit_status", json_integer(s->exit_status));
         bad |= put(root, "message", str(s->message));
+        json_t *w = json_array();
+        for (size_t k = 0; w && k < s->n_warnings; k++)
+            bad |= json_array_append_new(w, str(s->warnings[k])) != 0;
+        bad |= put(root, "warnings", w ? w : json_null());
         if (s->implicit) {
             bad |= put(root, "newton_iterations", json_integer(s->newton_iterations));
             bad |= put(root, "step_cuts", json_integer(s->step_cuts));

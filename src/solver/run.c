@@ -1,6 +1,7 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "sim_internal.h"
 #include "solver/grid_output.h"
+#include "solver/run_warnings.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
 #include "io/output.h"
@@ -148,6 +149,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         s->nd.n_threads = 1;
         s->approx->n_threads = 1;
     }
+    pm_run_warnings warn;
+    pm_run_warnings_begin(&warn, c, o->quiet);
     pm_output *out = NULL;
     int rc = PM_OK, frame = 0;
     const char *dir = o->out_dir ? o->out_dir : c->output.directory;
@@ -189,6 +192,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             break;
         dt_min = fmin(dt_min, dt);
         dt_max = fmax(dt_max, dt);
+        pm_run_warnings_step(&warn, s->step, s->t, dt);
         if (out) {
             rc = pm_output_probes(out, s->t, &s->p);
             if (!rc && s->t >= next_energy - eps) {
@@ -252,6 +256,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .step_cuts = imf.total.step_cuts,
         .assemble_seconds = imf.total.assemble_seconds,
         .solve_seconds = imf.total.solve_seconds,
+        .warnings = (const char(*)[PM_WARNING_LEN])warn.msg,
+        .n_warnings = warn.n,
     };
     if (out) {
         char msg[2048];

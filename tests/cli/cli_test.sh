@@ -61,6 +61,13 @@ sed 's/"radius": 0.2 }, *$/"radius": 0.001 },/; s/"center": \[0.25, 0.25\], "rad
 expect_exit 2 "body that yields no particle" "$PMECH" run tiny.json
 check "says no particle" has "yields no particle" err.txt
 
+# A value that is valid but almost surely a unit mistake: a warning, printed and in run.json; the run goes on.
+sed 's/"youngs_modulus": 1000,/"youngs_modulus": 5,/' "$SRC/examples/elastic_disks/case.json" > softE.json
+sed -i 's/"end_time": 3.5/"end_time": 0.05/' softE.json
+expect_exit 0 "a modulus of 5 Pa runs" "$PMECH" run softE.json -o softE.out
+check "with a warning naming the key" has "warning: .*materials\[0\].youngs_modulus" err.txt
+check "listed in run.json" python3 -c "import json,sys; w=json.load(open('softE.out/run.json'))['warnings']; sys.exit(0 if len(w)==1 and 'below 1 kPa' in w[0] else 1)"
+
 # A misspelt scatter strategy is refused rather than timed as the default.
 PMECH_SCATTER=bogus expect_exit 2 "PMECH_SCATTER=bogus" "$PMECH" run "$SRC/examples/elastic_disks/case.json" -o scatter.out --quiet
 check "names the variable, the value and the allowed ones" sh -c 'grep -q "PMECH_SCATTER" err.txt && grep -q "bogus" err.txt && grep -q "colour" err.txt && grep -q "buffers" err.txt'
