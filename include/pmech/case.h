@@ -178,6 +178,23 @@ int pm_case_load_buffer(const char *text, size_t len, const char *name, pm_case 
 /** @brief Free what a case owns and zero it. Safe on a zeroed struct. */
 void pm_case_free(pm_case *c);
 
+/**
+ * @brief Load a case into a case allocated here (for bindings from other languages, which cannot
+ *        allocate the struct themselves).
+ * @param path the case file, or NULL to load @p text instead
+ * @param text JSON text when @p path is NULL (its name in messages: @p name)
+ * @param name file name of @p text for messages and relative paths (NULL: "case.json")
+ * @param out receives the case (NULL after a failure); free with pm_case_destroy()
+ * @return as pm_case_load()
+ */
+int pm_case_new(const char *path, const char *text, const char *name, pm_case **out);
+
+/** @brief Free a case from pm_case_new() (NULL is fine). */
+void pm_case_destroy(pm_case *c);
+
+/** @brief The case's output directory (output.directory, or its default "<stem>.out"). */
+const char *pm_case_output_dir(const pm_case *c);
+
 /** Longest warning message, with its terminating zero. */
 #define PM_WARNING_LEN 320
 

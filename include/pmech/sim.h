@@ -136,6 +136,18 @@ typedef struct pm_run_opts {
  */
 int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim);
 
+/**
+ * @brief pm_run() with every option at its default but these, writing all outputs; for bindings from
+ *        other languages, which cannot follow new fields of pm_run_opts.
+ * @param c loaded case
+ * @param out_dir output directory (NULL: the case's output.directory)
+ * @param threads OpenMP threads (0: the default)
+ * @param quiet 1: no progress line or warnings on stderr
+ * @param stats if not NULL, receives what the run reached
+ * @return as pm_run()
+ */
+int pm_run_to(const pm_case *c, const char *out_dir, int threads, int quiet, pm_run_stats *stats);
+
 #ifdef __cplusplus
 }
 #endif

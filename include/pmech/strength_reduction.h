@@ -105,6 +105,20 @@ int pm_srf_trial_run(const pm_case *c, double factor, double elastic_displacemen
  */
 int pm_strength_reduction(const pm_case *c, const pm_run_opts *o, pm_srf_result *r);
 
+/**
+ * @brief pm_strength_reduction() with default options but these (for bindings from other languages).
+ * @param c case with analysis.strength_reduction set
+ * @param out_dir where the trials go (NULL: the case's output.directory; "" for no files)
+ * @param threads OpenMP threads (0: the default)
+ * @param quiet 1: no line per trial
+ * @param fos receives the factor of safety
+ * @param lo receives the largest factor that held
+ * @param hi receives the smallest factor that failed
+ * @return as pm_strength_reduction()
+ */
+int pm_strength_reduction_to(const pm_case *c, const char *out_dir, int threads, int quiet, double *fos, double *lo,
+                             double *hi);
+
 #ifdef __cplusplus
 }
 #endif

@@ -266,3 +266,34 @@ char *pm_case_get_json(const pm_case *c, const char *path)
         pm_error_set(PM_ENOMEM, "out of memory writing %s as JSON", path);
     return text;
 }
+
+int pm_case_new(const char *path, const char *text, const char *name, pm_case **out)
+{
+    *out = NULL;
+    pm_case *c = calloc(1, sizeof *c);
+    if (!c)
+        return pm_error_set(PM_ENOMEM, "out of memory for a case");
+    int rc;
+    if (path)
+        rc = pm_case_load(path, c);
+    else if (text)
+        rc = pm_case_load_buffer(text, strlen(text), name ? name : "case.json", c);
+    else
+        rc = pm_error_set(PM_EINPUT, "pm_case_new: neither a file nor a text given");
+    if (rc) {
+        pm_case_destroy(c);
+        return rc;
+    }
+    *out = c;
+    return PM_OK;
+}
+
+void pm_case_destroy(pm_case *c)
+{
+    if (!c)
+        return;
+    pm_case_free(c);
+    free(c);
+}
+
+const char *pm_case_output_dir(const pm_case *c) { return c->output.directory; }

@@ -2,6 +2,7 @@
 #include "sim_internal.h"
 #include "solver/grid_output.h"
 #include "solver/run_warnings.h"
+#include "solver/thread_governor.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
 #include "io/output.h"
@@ -149,6 +150,10 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         s->nd.n_threads = 1;
         s->approx->n_threads = 1;
     }
+    /* a thread count nobody chose is checked against one thread as the run goes (explicit runs) */
+    pm_thread_gov gov;
+    pm_thread_gov_init(&gov, s, o->threads <= 0 && !getenv("OMP_NUM_THREADS") &&
+                                    c->analysis.type == PM_ANALYSIS_EXPLICIT);
     pm_run_warnings warn;
     pm_run_warnings_begin(&warn, c, o->quiet);
     pm_output *out = NULL;
@@ -185,9 +190,12 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
                               s->step + 1, s->t, dt);
             break;
         }
+        pm_thread_gov_before(&gov, s);
         const double w0 = pm_wall_seconds();
         rc = c->analysis.type == PM_ANALYSIS_EXPLICIT ? pm_explicit_step(s, dt) : implicit_step(s, dt, &imf);
-        loop_seconds += pm_wall_seconds() - w0;
+        const double w1 = pm_wall_seconds();
+        loop_seconds += w1 - w0;
+        pm_thread_gov_after(&gov, w1 - w0);
         if (rc)
             break;
         dt_min = fmin(dt_min, dt);
@@ -250,7 +258,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .particles = s->p.n,
         .exit_status = pm_exit_code(rc),
         .message = rc ? pm_error_message() : "",
-        .threads = threads,
+        .threads = pm_thread_gov_main_count(&gov),
         .implicit = c->analysis.type != PM_ANALYSIS_EXPLICIT,
         .newton_iterations = imf.total.iterations,
         .step_cuts = imf.total.step_cuts,
