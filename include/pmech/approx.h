@@ -65,7 +65,7 @@ typedef struct pm_approx_ops {
     int (*init)(pm_approx *a);
 } pm_approx_ops;
 
-/** Tuning keys of the case file that approximations read (INPUT.md `lme_gamma`, `support_radius`). */
+/** Tuning keys of the case file that approximations read (docs/input.md: `lme_gamma`, `support_radius`). */
 typedef struct pm_approx_opts {
     double lme_gamma;       /**< LME: gamma = beta h^2; NAN = the default (1.8) */
     double support_radius;  /**< meshfree/LME support radius in metres; NAN = from the kind's tolerance */

@@ -280,7 +280,7 @@ typedef struct pm_driver {
 } pm_driver;
 
 /**
- * @brief Load a driver file (INPUT.md, "Material-point driver files").
+ * @brief Load a driver file (docs/input.md, "Material-point driver files").
  * @return PM_OK or PM_EINPUT/PM_EIO with a message as for case files
  */
 int pm_driver_load(const char *path, pm_driver *d);

@@ -4,7 +4,7 @@
  *        along a strain (or mixed strain/stress) path and its response written as CSV.
  *
  * The driver file format (pm_driver, loaded by pm_driver_load in case.h) is described in
- * shared/design/INPUT.md and docs/materials.md.
+ * docs/input.md and docs/materials.md.
  */
 #ifndef PMECH_DRIVER_H
 #define PMECH_DRIVER_H

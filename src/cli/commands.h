@@ -21,4 +21,10 @@ int pm_cmd_render(int argc, char **argv);
 /** The usage and options of `pmech render`. */
 void pm_cmd_render_usage(FILE *f);
 
+/**
+ * Make OpenMP's waiting threads sleep (OMP_WAIT_POLICY=passive) unless the user chose a policy: sets it
+ * and starts the program again with @p argv (returns only when nothing was to be done, or exec failed).
+ */
+void pm_cli_passive_wait(char **argv);
+
 #endif

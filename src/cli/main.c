@@ -40,8 +40,10 @@ int main(int argc, char **argv)
         printf("pmech %s\n", PMECH_VERSION);
         return 0;
     }
-    if (!strcmp(argv[1], "run"))
+    if (!strcmp(argv[1], "run")) {
+        pm_cli_passive_wait(argv);
         return pm_cmd_run(argc - 1, argv + 1);
+    }
     if (!strcmp(argv[1], "material"))
         return pm_cmd_material(argc - 1, argv + 1);
     if (!strcmp(argv[1], "render"))

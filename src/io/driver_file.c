@@ -1,4 +1,4 @@
-/* `pmech material` driver files (INPUT.md, "Material-point driver files") to pm_driver. */
+/* `pmech material` driver files (docs/input.md, "Material-point driver files") to pm_driver. */
 #include "pmech/case.h"
 
 #include "io/json_read.h"

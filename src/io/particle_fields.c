@@ -27,9 +27,12 @@ void pm_pf_log_strain(const double *F, double *vol, double *dev)
     const double mean = 0.5 * (b11 + b22), half = 0.5 * (b11 - b22);
     const double r = sqrt(half * half + b12 * b12);
     /* lambda1 * lambda2 = det(B) exactly, so the smaller root comes from the product (no cancellation) */
-    const double det = b11 * b22 - b12 * b12;
-    const double l1 = mean + r, l2 = l1 > 0 ? det / l1 : 0;
-    const double e[3] = {0.5 * log(l1), 0.5 * log(l2), log(fabs(F[PM_FZZ]))};
+    const double det = b11 * b22 - b12 * b12, l1 = mean + r;
+    if (!(l1 > 0) || !(det > 0) || F[PM_FZZ] == 0) { /* a particle squashed flat: no logarithmic strain */
+        *vol = *dev = NAN;
+        return;
+    }
+    const double e[3] = {0.5 * log(l1), 0.5 * log(det / l1), log(fabs(F[PM_FZZ]))};
     const double v = e[0] + e[1] + e[2];
     double s = 0;
     for (int k = 0; k < 3; k++)

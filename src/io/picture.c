@@ -23,7 +23,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#define TICKS_MAX 12
+#define TICKS_MAX 40
 
 /* Particles are drawn 16 % larger than their half-sizes: MPM seeds them at Gauss points, whose spacing
  * inside a cell (h / sqrt 3 for 2 x 2 points, 0.387 h for 3 x 3) exceeds twice their half-size (h / 2,
@@ -167,11 +167,9 @@ int pm_picture_layout_of(const pm_picture *pic, pm_picture_layout *lay)
 /* Show text with its left edge at x and its baseline at y, smaller if it would pass max_w. */
 static void show_fit(cairo_t *cr, const char *s, double x, double y, double max_w, double fs)
 {
-    double w = text_width(cr, s);
-    if (w > max_w && w > 0) {
+    const double w = text_width(cr, s);
+    if (w > max_w && w > 0)
         cairo_set_font_size(cr, fs * max_w / w);
-        w = text_width(cr, s);
-    }
     cairo_move_to(cr, x, y);
     cairo_show_text(cr, s);
     cairo_set_font_size(cr, fs);

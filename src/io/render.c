@@ -257,8 +257,11 @@ int pm_frame_field(const pm_frame *f, const char *field, double *out, const char
     const double *a = pm_frame_array(f, array, &nc);
     if (!a)
         return unknown_field(f, field);
-    if (dot && (comp = component_index(array, nc, dot + 1)) < 0)
-        return unknown_field(f, field);
+    if (dot) {
+        comp = component_index(array, nc, dot + 1);
+        if (comp < 0)
+            return unknown_field(f, field);
+    }
     if (comp == -2 && nc > 1)
         comp = -1;
     for (size_t i = 0; i < n; i++) {

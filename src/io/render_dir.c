@@ -131,7 +131,7 @@ int pm_render_dir(const char *dir, const pm_render_dir_opts *o, size_t *n_writte
         range[0] -= d;
         range[1] += d;
     }
-    char title[256], stem[128], path[PATH_LEN], pattern[PATH_LEN];
+    char title[256], stem[128], path[PATH_LEN];
     int axisymmetric;
     run_info(dir, title, sizeof title, &axisymmetric);
     snprintf(stem, sizeof stem, "%s", o->field);
@@ -157,6 +157,7 @@ int pm_render_dir(const char *dir, const pm_render_dir_opts *o, size_t *n_writte
     if (!o->quiet)
         fputc('\n', stderr);
     if (!rc && o->animation) {
+        char pattern[PATH_LEN];
         snprintf(pattern, sizeof pattern, "%s/%s_%%06d.png", out_dir, stem);
         rc = pm_animate(pattern, o->fps > 0 ? o->fps : 10, o->animation);
     }

@@ -33,6 +33,12 @@ for cmd in run material render; do
   "$PMECH" $cmd --help > sub.txt
   check "pmech --help holds every line of pmech $cmd --help" sh -c 'grep -v "^$" sub.txt | while IFS= read -r l; do grep -qxF -- "$l" all.txt || exit 1; done'
 done
+# pmech run makes waiting OpenMP threads sleep unless the user chose: the runtime it starts again shows a
+# spin count of 0; a policy the user set is kept.
+OMP_DISPLAY_ENV=verbose "$PMECH" run nothing.json >/dev/null 2>wait.txt
+check "run restarts with passive waiting" sh -c "grep GOMP_SPINCOUNT wait.txt | tail -1 | grep -q \"'0'\""
+OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose "$PMECH" run nothing.json >/dev/null 2>wait.txt
+check "a policy set by the user is kept" sh -c "grep -c GOMP_SPINCOUNT wait.txt | grep -qx 1 && ! grep GOMP_SPINCOUNT wait.txt | grep -q \"'0'\""
 expect_exit 2 "render without a run" "$PMECH" render nowhere --field speed
 check "render says what it looked for" has "nowhere" err.txt
 expect_exit 2 "render without a field" "$PMECH" render . --quiet

@@ -1,5 +1,5 @@
 /*
- * Cantilever under self-weight (seed 000 section 5.1; BENCHMARKS.md): L = 8, b = h = 1, rho = 1000,
+ * Cantilever under self-weight (seed 000 section 5.1): L = 8, b = h = 1, rho = 1000,
  * E = 90 MPa, nu = 0, plane strain, neo-Hookean, clamped at x = 0, implicit quasi-static, 4 points per
  * cell. The example runs MPM with quadratic B-splines (examples/cantilever/case.json).
  *

@@ -1,5 +1,5 @@
 /*
- * Dyka bar (seed 003 section 3.1; shared/design/BENCHMARKS.md): elastic bar fixed at x = L, free at
+ * Dyka bar (seed 003 section 3.1): elastic bar fixed at x = L, free at
  * x = 0, uniform initial velocity v0. The free end's velocity is a square wave: v0 for t < L/c,
  * -v0 for L/c < t < 3L/c, period 4L/c, c = sqrt(E/rho).
  *
