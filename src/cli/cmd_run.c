@@ -42,6 +42,11 @@ static int help(void)
 /* A case with analysis.strength_reduction is a search of many runs; the factor of safety is its result. */
 static int run_strength_reduction(const pm_case *c, const pm_run_opts *o, const char *dir)
 {
+    /* the trials run quietly: the case's warnings are said once, here */
+    char warnings[8][PM_WARNING_LEN];
+    const size_t nw = o->quiet ? 0 : pm_case_warnings(c, warnings, 8);
+    for (size_t k = 0; k < nw && k < 8; k++)
+        fprintf(stderr, "pmech: warning: %s\n", warnings[k]);
     pm_srf_result *r = malloc(sizeof *r);
     if (!r) {
         fprintf(stderr, "pmech: out of memory\n");
