@@ -131,6 +131,7 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         { "body", PM_VTU_I32, 1, NULL },
         { "mass", PM_VTU_F64, 1, NULL },
         { "volume", PM_VTU_F64, 1, NULL },
+        { "id", PM_VTU_I32, 1, NULL },
     };
     const size_t n = p->n;
     const pm_vtu_piece pc = { n, n, n, arrays, sizeof arrays / sizeof arrays[0] };
@@ -159,6 +160,8 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         rc = pm_vtu_write_block(f, p->mass, n * sizeof(double));
     if (!rc)
         rc = pm_vtu_write_block(f, p->vol, n * sizeof(double));
+    if (!rc)
+        rc = pm_vtu_write_block(f, p->id, n * sizeof(int32_t));
     if (!rc) {
         fill_vec3(scratch, p->x, NULL, n);
         rc = pm_vtu_write_block(f, scratch, 3 * n * sizeof(double));

@@ -6,8 +6,11 @@ usage: vtk_readback.py DIR N_PARTICLES
 Checks that particles.pvd is a valid Collection whose every listed frame exists, and that VTK's
 vtkXMLUnstructuredGridReader reads each frame with N_PARTICLES points and N_PARTICLES vertex cells
 and the point arrays displacement (3), velocity (3), stress (4: xx, yy, zz, xy), plastic_strain,
-material (Int32), body (Int32), mass and volume, each with one finite tuple per particle. grid.vtu,
-when present, must read with at least one point and one cell, and no temporary file may be left.
+material (Int32), body (Int32), mass, volume and id (Int32, no two particles of a frame alike), each
+with one finite tuple per particle. N_PARTICLES is one count for every frame, or a comma-separated
+list of one count per frame in the order particles.pvd lists them (runs whose sources and sinks
+change the count; a frame may hold no particle). grid.vtu, when present, must read with at least one
+point and one cell, and no temporary file may be left.
 Exit status: 0 all good, 1 a check failed, 2 bad usage.
 """
 import math
@@ -41,6 +44,7 @@ EXPECTED = {  # name: (components, VTK data type or None for any floating type)
     "body": (1, vtk.VTK_INT),
     "mass": (1, None),
     "volume": (1, None),
+    "id": (1, vtk.VTK_INT),
 }
 STRESS_COMPONENTS = ["xx", "yy", "zz", "xy"]
 
@@ -125,6 +129,10 @@ def check_frame(path, n):
             got = [arr.GetComponentName(k) for k in range(ncomp)]
             if got != STRESS_COMPONENTS:
                 fail("%s: stress component names %s, expected %s" % (path, got, STRESS_COMPONENTS))
+        if name == "id" and arr.GetNumberOfTuples() == n:
+            ids = [int(arr.GetValue(k)) for k in range(n)]
+            if len(set(ids)) != n:
+                fail("%s: %d particles share an id with another" % (path, n - len(set(ids))))
 
 
 def check_grid(path):
@@ -148,9 +156,10 @@ def main(argv):
         return 2
     d = argv[1]
     try:
-        n = int(argv[2])
+        counts = [int(v) for v in argv[2].split(",")]
     except ValueError:
-        sys.stderr.write("vtk_readback: N_PARTICLES must be an integer, got '%s'\n" % argv[2])
+        sys.stderr.write("vtk_readback: N_PARTICLES must be an integer or a comma-separated list of them, got "
+                         "'%s'\n" % argv[2])
         return 2
     pvd = os.path.join(d, "particles.pvd")
     try:
@@ -164,8 +173,12 @@ def main(argv):
     sets = root.findall("./Collection/DataSet")
     if not sets:
         fail("%s: lists no frame" % pvd)
+    if len(counts) > 1 and len(counts) != len(sets):
+        fail("%s: lists %d frames, %d counts were given" % (pvd, len(sets), len(counts)))
+        return 1
     last = -math.inf
-    for ds in sets:
+    for k, ds in enumerate(sets):
+        n = counts[k] if len(counts) > 1 else counts[0]
         f = ds.get("file")
         try:
             t = float(ds.get("timestep"))
@@ -191,7 +204,7 @@ def main(argv):
         fail("%s: temporary files left: %s" % (d, ", ".join(sorted(tmp))))
     if errors:
         return 1
-    print("ok: %d frames of %d particles in %s read by VTK %s" % (len(sets), n, d, vtk.vtkVersion.GetVTKVersion()))
+    print("ok: %d frames of %s particles in %s read by VTK %s" % (len(sets), argv[2], d, vtk.vtkVersion.GetVTKVersion()))
     return 0
 
 
