@@ -1,5 +1,6 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "sim_internal.h"
+#include "flow.h"
 #include "pmech/error.h"
 #include "pmech/implicit.h"
 #include "pmech/output.h"
@@ -177,6 +178,10 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     double dt_min = INFINITY, dt_max = 0, last_frame_t = 0;
     implicit_files imf;
     rc = open_implicit_files(&imf, c, o->write_output ? dir : NULL, o->verbose);
+    pm_flow_log flog = {0};
+    if (!rc && out)
+        rc = pm_flow_log_open(&flog, s, dir);
+    double particle_steps = 0; /* the count changes with sources and sinks */
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
     while (!rc && s->t < end - eps) {
@@ -189,9 +194,13 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             break;
         }
         const double w0 = pm_wall_seconds();
+        const double n_before = (double)s->p.n;
         rc = c->analysis.type == PM_ANALYSIS_EXPLICIT ? pm_explicit_step(s, dt) : implicit_step(s, dt, &imf);
         loop_seconds += pm_wall_seconds() - w0;
         if (rc)
+            break;
+        particle_steps += n_before;
+        if (out && (rc = pm_flow_log_step(&flog, s)) != PM_OK)
             break;
         dt_min = fmin(dt_min, dt);
         dt_max = fmax(dt_max, dt);
@@ -236,6 +245,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     }
     pm_progress_end(&pg, s->step, s->t);
     close_implicit_files(&imf);
+    int rc_log = pm_flow_log_close(&flog);
+    if (!rc && rc_log)
+        rc = rc_log;
+    pm_flow_totals ft;
+    pm_flow_totals_of(s, &ft);
     pm_run_summary sum = {
         .version = PMECH_VERSION,
         .case_file = c->file,
@@ -245,8 +259,14 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .end_time = s->t,
         .wall_seconds = pm_wall_seconds() - wall0,
         .loop_seconds = loop_seconds,
-        .particle_steps_per_second = loop_seconds > 0 ? (double)s->p.n * (double)s->step / loop_seconds : 0,
+        .particle_steps_per_second = loop_seconds > 0 ? particle_steps / loop_seconds : 0,
         .particles = s->p.n,
+        .flow = s->flow != NULL,
+        .particles_max = ft.max_n,
+        .particles_released = ft.released,
+        .particles_removed = ft.removed,
+        .mass_released = ft.released_mass,
+        .mass_removed = ft.removed_mass,
         .exit_status = pm_exit_code(rc),
         .message = rc ? pm_error_message() : "",
         .threads = threads,
