@@ -19,7 +19,7 @@
 #define _POSIX_C_SOURCE 199309L /* clock_gettime() */
 
 #include "pmech/error.h"
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 #include "shape/approx_internal.h" /* the benchmark sets an approximation's thread count */
 
 #include <math.h>

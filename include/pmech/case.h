@@ -1,7 +1,7 @@
 /**
  * @file case.h
- * @brief A case file (shared/design/INPUT.md) parsed and validated into plain C structs, and the
- *        material-point driver file of `pmech material`.
+ * @brief A case file (docs/input.md) parsed and validated into plain C structs, changed key by key
+ *        with the same checks (pm_case_set), and the material-point driver file of `pmech material`.
  *
  * Loading never crashes on bad input: it returns PM_EINPUT with one message naming
  * file:line:column (syntax) or the key path (e.g. `materials[0].poisson_ratio`), the value found
@@ -176,6 +176,7 @@ typedef struct pm_case {
     pm_case_source *sources;      /**< particles of source k carry body index n_bodies + k */
     size_t n_sinks;
     pm_case_sink *sinks;
+    void *doc;                    /**< the JSON document the case was read from (private; pm_case_set edits it) */
 } pm_case;
 
 /**
@@ -206,6 +207,58 @@ size_t pm_case_source_releases(const pm_case *c, size_t k);
 
 /** @brief The time of release @p j (0-based, below pm_case_source_releases()) of source @p k. */
 double pm_case_source_release_time(const pm_case *c, size_t k, size_t j);
+/*
+ * Changing a loaded case by key path. A path names a key as docs/input.md does, with [i] for the
+ * i-th entry of a list: "materials[0].friction_angle", "analysis.gravity[1]", "bodies[0].shape.max".
+ * Each call edits the case's JSON document and reloads all of it, so a value passes exactly the
+ * checks it would in a case file (ranges, types, unknown keys with "did you mean", cross-checks
+ * between sections); on failure the case is left as it was and the message names the key path.
+ * Objects missing on the way are created ("output.picture_range" on a case without "output"); an
+ * index equal to a list's length appends to it. A simulation made from the case must be destroyed
+ * before the case changes (it points into the case's arrays).
+ */
+
+/**
+ * @brief Set a number (a whole number is written as a JSON integer, so keys that take counts accept it).
+ * @param c a case from pm_case_load() or pm_case_load_buffer()
+ * @param path key path, e.g. "materials[0].friction_angle"
+ * @param value the number (finite)
+ * @return PM_OK, or PM_EINPUT naming the key path (the case unchanged)
+ */
+int pm_case_set(pm_case *c, const char *path, double value);
+
+/**
+ * @brief Set a string, e.g. pm_case_set_string(c, "analysis.scheme", "usl").
+ * @return PM_OK, or PM_EINPUT naming the key path (the case unchanged)
+ */
+int pm_case_set_string(pm_case *c, const char *path, const char *value);
+
+/**
+ * @brief Set any JSON value given as text: a list "[0, -9.81]", an object, true or false.
+ * @param json the value as JSON text
+ * @return PM_OK, or PM_EINPUT for text that is not JSON or a value the case refuses (case unchanged)
+ */
+int pm_case_set_json(pm_case *c, const char *path, const char *json);
+
+/**
+ * @brief Remove an optional key so that its default applies (e.g. "analysis.dt").
+ * @return PM_OK; PM_EINPUT when the key is not there or the case needs it (the case unchanged)
+ */
+int pm_case_remove(pm_case *c, const char *path);
+
+/**
+ * @brief Read a number given in the case (defaults that the file leaves out are not in the document:
+ *        read those from the struct).
+ * @param value receives the number
+ * @return PM_OK; PM_EINPUT when the path does not name a number of the document
+ */
+int pm_case_get(const pm_case *c, const char *path, double *value);
+
+/**
+ * @brief The JSON text of a key's value, or of the whole case for path "" (to save a changed case).
+ * @return a string to release with free(), or NULL (message set) when the path names nothing
+ */
+char *pm_case_get_json(const pm_case *c, const char *path);
 
 /** Material-point driver path types. */
 typedef enum { PM_PATH_TRIAXIAL = 0, PM_PATH_OEDOMETER = 1, PM_PATH_SIMPLE_SHEAR = 2, PM_PATH_INCREMENTS = 3 } pm_path_type;

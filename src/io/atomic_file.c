@@ -1,7 +1,7 @@
 /* Files appear complete or not at all: everything is written to "<path>.tmp" and renamed over
  * the final name (rename is atomic within one directory on POSIX file systems). */
 #include "pmech/error.h"
-#include "pmech/output.h"
+#include "io/output.h"
 #include "io/vtu_write.h"
 
 #include <errno.h>

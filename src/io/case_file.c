@@ -1,5 +1,5 @@
 /*
- * Case files (shared/design/INPUT.md) to pm_case. Every key is checked: unknown keys, wrong types,
+ * Case files (docs/input.md) to pm_case. Every key is checked: unknown keys, wrong types,
  * out-of-range values and physical nonsense are errors naming the key path, the value and what is
  * allowed; JSON syntax errors name file:line:column. Counts that cannot fit in memory are refused
  * before anything is allocated. This file reads the file and the top level; each section has its
@@ -111,6 +111,14 @@ static int parse_root(pm_case *c, json_t *root)
     return pm_case_check_sizes(c);
 }
 
+int pm_case_from_json(json_t *root, const char *name, pm_case *c)
+{
+    memset(c, 0, sizeof *c);
+    split_name(c, name);
+    c->doc = root;
+    return parse_root(c, root);
+}
+
 int pm_case_load_buffer(const char *text, size_t len, const char *name, pm_case *c)
 {
     memset(c, 0, sizeof *c);
@@ -119,9 +127,7 @@ int pm_case_load_buffer(const char *text, size_t len, const char *name, pm_case 
     json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &err);
     if (!root)
         return pm_error_set(PM_EINPUT, "%s:%d:%d: %s", c->file, err.line, err.column, err.text);
-    int rc = parse_root(c, root);
-    json_decref(root);
-    return rc;
+    return pm_case_from_json(root, name, c);
 }
 
 int pm_case_load(const char *path, pm_case *c)
@@ -182,5 +188,6 @@ void pm_case_free(pm_case *c)
     free(c->materials);
     free(c->bcs);
     free(c->probes);
+    json_decref(c->doc);
     memset(c, 0, sizeof *c);
 }

@@ -54,6 +54,12 @@ const char *const *pm_case_keys(pm_case_keyset_id id);
 /** The whole key table, PM_KEYS_COUNT entries in pm_case_keyset_id order; @p n receives the count. */
 const pm_case_keyset *pm_case_keysets(size_t *n);
 
+/**
+ * Load a case from a parsed document, which the case then owns (pm_case_free releases it, also after a
+ * failure); @p name is the file name used in messages and for relative paths.
+ */
+int pm_case_from_json(json_t *root, const char *name, pm_case *c);
+
 /** Set PM_EINPUT "<file>: <path>: <what><detail>" (detail may be NULL) and return it. */
 int pm_case_fail(const char *file, const char *path, const char *what, const char *detail);
 

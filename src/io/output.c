@@ -1,7 +1,7 @@
 /* The output directory of a run: particle frames + particles.pvd, grid.vtu, probes.csv,
  * energy.csv and run.json. VTU/PVD/JSON files are replaced atomically; the CSV files only ever
  * receive whole lines, so a run that stops at any point leaves valid files behind. */
-#include "pmech/output.h"
+#include "io/output.h"
 #include "pmech/error.h"
 #include "io/vtu_write.h"
 

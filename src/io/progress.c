@@ -1,7 +1,7 @@
 /* Progress of a run: one line redrawn in place on a terminal (at most 5 times a second), a plain
  * line every 10 s of wall time in a log, nothing when quiet. Called every step, so the common
  * path is one monotonic clock read and a comparison. */
-#include "pmech/progress.h"
+#include "io/progress.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
 /* run.json: what ran, how long it took and what the probes follow. */
 #include "io/vtu_write.h"
 #include "pmech/error.h"
-#include "pmech/output.h"
+#include "io/output.h"
 
 #include <jansson.h>
 #include <math.h>

@@ -10,7 +10,7 @@
 #include <stdio.h>
 
 #include "pmech/grid.h"
-#include "pmech/output.h"
+#include "io/output.h"
 #include "pmech/particles.h"
 
 /** Element types of a DataArray. */

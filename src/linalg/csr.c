@@ -1,5 +1,5 @@
 /* Compressed-row matrices: storage with kept capacity, symmetry measure, product. */
-#include "pmech/sparse.h"
+#include "linalg/sparse.h"
 #include "pmech/error.h"
 
 #include <math.h>

@@ -7,9 +7,9 @@
  * geometric stiffness of compressed material can make it so) is reported as not positive definite
  * rather than factorised without pivoting; the solve then falls back to UMFPACK.
  */
-#include "pmech/sparse.h"
+#include "linalg/sparse.h"
 #include "pmech/error.h"
-#include "pmech/progress.h"
+#include "io/progress.h"
 
 #include <cholmod.h>
 #include <stdlib.h>

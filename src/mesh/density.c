@@ -1,6 +1,6 @@
 /* Mass density from particle positions (seed 004 section 3.3, eqs. 12-13). */
 #include "pmech/approx.h"
-#include "pmech/density.h"
+#include "mesh/density.h"
 #include "pmech/error.h"
 
 #include "shape/shape_internal.h"

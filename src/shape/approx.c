@@ -6,7 +6,7 @@
 #include "approx_internal.h"
 #include "pmech/case.h"
 #include "pmech/error.h"
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 
 #include "shape_internal.h"
 

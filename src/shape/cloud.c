@@ -9,7 +9,7 @@
  * last build findable (clamping is monotone, so a node's clamped cell is inside the clamped range
  * of any interval that contains its binned position).
  */
-#include "pmech/cloud.h"
+#include "shape/cloud.h"
 #include "pmech/error.h"
 
 #include "shape_internal.h"

@@ -13,7 +13,7 @@
  * linear fields.
  */
 #include "pmech/error.h"
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 
 #include <math.h>
 #include <stdlib.h>

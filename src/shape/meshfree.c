@@ -17,7 +17,7 @@
  * matrix is well conditioned; LME grows it until the nodes enclose the point, then adds the
  * next-nearest nodes one at a time while cond(J) exceeds its tolerance.
  */
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 #include "pmech/error.h"
 
 #include "meshfree_shape.h"

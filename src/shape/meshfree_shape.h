@@ -7,7 +7,7 @@
 #ifndef PMECH_MESHFREE_SHAPE_H
 #define PMECH_MESHFREE_SHAPE_H
 
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 
 #include "shape_internal.h"
 

@@ -3,8 +3,8 @@
 #define PMECH_SHAPE_INTERNAL_H
 
 #include "approx_internal.h"
-#include "pmech/cloud.h"
-#include "pmech/meshfree.h"
+#include "shape/cloud.h"
+#include "shape/meshfree.h"
 
 /* Defaults of the LME kinds, on the grid (lme.c) and on a node cloud (lme_cloud.c) alike. */
 #define PM_LME_DEFAULT_GAMMA 1.8 /* gamma = beta h^2 (Arroyo & Ortiz's usual choice) */

@@ -12,7 +12,7 @@
 
 #include "pmech/error.h"
 #include "pmech/grid.h"
-#include "pmech/progress.h"
+#include "io/progress.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -2,9 +2,9 @@
 #ifndef PMECH_IMPLICIT_INTERNAL_H
 #define PMECH_IMPLICIT_INTERNAL_H
 
-#include "pmech/implicit.h"
+#include "solver/implicit.h"
 #include "solver/sim_internal.h"
-#include "pmech/sparse.h"
+#include "linalg/sparse.h"
 
 #include <stdint.h>
 

@@ -4,8 +4,8 @@
 #ifndef PMECH_MESHFREE_INTERNAL_H
 #define PMECH_MESHFREE_INTERNAL_H
 
-#include "pmech/cloud.h"
-#include "pmech/meshfree.h"
+#include "shape/cloud.h"
+#include "shape/meshfree.h"
 #include "solver/sim_internal.h"
 
 struct pm_implicit_ws;

@@ -2,9 +2,9 @@
 #include "sim_internal.h"
 #include "flow.h"
 #include "pmech/error.h"
-#include "pmech/implicit.h"
-#include "pmech/output.h"
-#include "pmech/progress.h"
+#include "solver/implicit.h"
+#include "io/output.h"
+#include "io/progress.h"
 #include "pmech/render.h"
 
 #include <math.h>

@@ -1,9 +1,9 @@
 /* Setting up a simulation from a case: grid, approximation, particles, nodal arrays; its boundary
  * conditions (boundary.c) and contact surfaces (src/contact). */
 #include "sim_internal.h"
-#include "pmech/density.h"
+#include "mesh/density.h"
 #include "pmech/error.h"
-#include "pmech/implicit.h"
+#include "solver/implicit.h"
 
 #include "boundary.h"
 #include "contact/contact.h"

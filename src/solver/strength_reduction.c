@@ -6,8 +6,8 @@
 #include "pmech/strength_reduction.h"
 
 #include "pmech/error.h"
-#include "pmech/output.h"
-#include "pmech/progress.h"
+#include "io/output.h"
+#include "io/progress.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -2,6 +2,7 @@
 # output API (fixture), then vtk_readback.py checks it. Included from tests/CMakeLists.txt.
 add_executable(write_sample ${CMAKE_CURRENT_LIST_DIR}/write_sample.c)
 target_link_libraries(write_sample PRIVATE pmech)
+target_include_directories(write_sample PRIVATE ${CMAKE_SOURCE_DIR}/src)
 
 set(PMECH_IO_SAMPLE ${CMAKE_CURRENT_BINARY_DIR}/io_sample)
 foreach(el quad4 tri3)

@@ -5,7 +5,7 @@
 #include "pmech/case.h"
 #include "pmech/error.h"
 #include "pmech/grid.h"
-#include "pmech/output.h"
+#include "io/output.h"
 #include "pmech/particles.h"
 
 #include <math.h>

@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pmech/cloud.h"
+#include "shape/cloud.h"
 #include "pmech/error.h"
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 #include "shape/approx_internal.h"
 
 static inline double mc_rnd(unsigned *seed) { return (double)rand_r(seed) / RAND_MAX; }

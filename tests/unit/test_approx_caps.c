@@ -16,7 +16,7 @@
 #include "shape/approx_internal.h"
 #include "pmech/case.h"
 #include "pmech/error.h"
-#include "pmech/meshfree.h"
+#include "shape/meshfree.h"
 
 /* out[] equals the NULL-terminated want[]. */
 static void names_equal(const char *const *out, size_t n, const char *const *want)

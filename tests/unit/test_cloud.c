@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pmech/cloud.h"
+#include "shape/cloud.h"
 #include "pmech/error.h"
 
 static double rnd(unsigned *seed) { return (double)rand_r(seed) / RAND_MAX; }

@@ -9,7 +9,7 @@
 #include <cmocka.h>
 
 #include "shape_check.h"
-#include "pmech/density.h"
+#include "mesh/density.h"
 
 static const double RHO = 1850.0;
 

@@ -21,9 +21,9 @@
 #include "pmech/case.h"
 #include "pmech/error.h"
 #include "pmech/grid.h"
-#include "pmech/output.h"
+#include "io/output.h"
 #include "pmech/particles.h"
-#include "pmech/progress.h"
+#include "io/progress.h"
 
 /* ---- fixtures ------------------------------------------------------------------------------ */
 

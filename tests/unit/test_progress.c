@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pmech/progress.h"
+#include "io/progress.h"
 
 /* Everything written to f so far, as a string. */
 static char *contents(FILE *f)

@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "pmech/error.h"
-#include "pmech/sparse.h"
+#include "linalg/sparse.h"
 
 #define N 99 /* unknowns of the 1-D problems: h = 1 / (N + 1) */
 

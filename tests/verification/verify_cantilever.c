@@ -43,7 +43,7 @@
 #include "cantilever_tip.h"
 
 #include "pmech/error.h"
-#include "pmech/implicit.h"
+#include "solver/implicit.h"
 #include "solver/sim_internal.h"
 
 #include <math.h>

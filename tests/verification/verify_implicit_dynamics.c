@@ -42,7 +42,7 @@
 #include "verify_util.h"
 
 #include "pmech/error.h"
-#include "pmech/implicit.h"
+#include "solver/implicit.h"
 #include "solver/sim_internal.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 /**
- * @file implicit.h
+ * @file implicit.h (internal to src/, not installed)
  * @brief Implicit MPM (seed 000 Algorithm 1, after Guilkey & Weiss 2003): per step an
  *        updated-Lagrangian Newton solve for the nodal displacement increments on the background
  *        grid, Newmark (beta = 1/4, gamma = 1/2) in time or no inertia (quasi-static), then the

@@ -1,5 +1,5 @@
 /**
- * @file meshfree.h
+ * @file meshfree.h (internal to src/, not installed)
  * @brief Meshfree shape functions on a node cloud (GMM: `mls`, `lme`; RKPM: `rk_cubic`) and the
  *        Kronecker-delta transformation that makes them interpolate at essential-boundary nodes.
  *
@@ -18,7 +18,7 @@
 #define PMECH_MESHFREE_H
 
 #include "pmech/approx.h"
-#include "pmech/cloud.h"
+#include "shape/cloud.h"
 
 #ifdef __cplusplus
 extern "C" {

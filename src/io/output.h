@@ -1,5 +1,5 @@
 /**
- * @file output.h
+ * @file output.h (internal to src/, not installed)
  * @brief Everything a run writes: ParaView VTU/PVD frames, grid.vtu, probes.csv, energy.csv and
  *        run.json. Every file is written under a temporary name and renamed, so what is on disk
  *        is always complete, even when a run stops on an error.

@@ -1,5 +1,5 @@
 /**
- * @file progress.h
+ * @file progress.h (internal to src/, not installed)
  * @brief Progress of a long run: one updating line on a terminal (step, simulated time, percent,
  *        ETA, particle-steps per second), plain periodic lines otherwise, nothing when quiet.
  */

@@ -1,5 +1,5 @@
 /**
- * @file cloud.h
+ * @file cloud.h (internal to src/, not installed)
  * @brief A cloud of nodes (GMM: Lagrangian nodes; RKPM: the particles themselves) and the
  *        uniform cell list that answers "which nodes lie within r of x".
  *

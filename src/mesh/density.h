@@ -1,5 +1,5 @@
 /**
- * @file density.h
+ * @file density.h (internal to src/, not installed)
  * @brief Mass density from the current particle positions (Wieckowski, seed 004 section 3.3).
  */
 #ifndef PMECH_DENSITY_H

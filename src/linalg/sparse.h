@@ -1,5 +1,5 @@
 /**
- * @file sparse.h
+ * @file sparse.h (internal to src/, not installed)
  * @brief Sparse matrices in compressed-row storage and direct solves with SuiteSparse: CHOLMOD for
  *        symmetric positive definite systems, UMFPACK for everything else (and as the fallback when
  *        a Cholesky factorisation finds the matrix indefinite).
