@@ -31,6 +31,11 @@ typedef enum {
     PM_Q_POSITION = 0, PM_Q_DISPLACEMENT = 1, PM_Q_VELOCITY = 2, PM_Q_STRESS = 3, PM_Q_PLASTIC_STRAIN = 4
 } pm_quantity;
 typedef enum { PM_GRID_RECTANGLE = 0, PM_GRID_GMSH = 1 } pm_grid_type;
+/** Volumetric averaging of a step's deformation (analysis.fbar). */
+typedef enum {
+    PM_FBAR_NONE = 0,  /**< every particle keeps its own volume change */
+    PM_FBAR_CELL = 1   /**< F-bar: the volume change averaged over each background cell (Coombs et al. 2018) */
+} pm_fbar_mode;
 /** When a trial factor of a strength reduction counts as failed (analysis.strength_reduction.criterion). */
 typedef enum {
     PM_SRF_CONVERGENCE = 0,  /**< the run cannot apply the full gravity: Newton fails after every step cut */
@@ -149,6 +154,7 @@ typedef struct pm_case {
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
+        pm_fbar_mode fbar;        /**< volumetric averaging against locking (MPM only) */
         pm_srf_opts strength_reduction;
     } analysis;
     struct {

@@ -15,6 +15,7 @@ static const char *const srf_criteria[] = {"convergence", "displacement", NULL};
 static const char *const density_updates[] = {"deformation", "positions", NULL};
 static const char *const analysis_types[] = {"explicit", "implicit", "quasi_static", NULL};
 static const char *const schemes[] = {"musl", "usl", "usf", "newmark_pc", NULL};
+static const char *const fbar_modes[] = {"none", "cell", NULL};
 
 /*
  * analysis.strength_reduction. A trial is judged by whether its load steps converge, so the analysis
@@ -125,6 +126,21 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
                             "%s: analysis.density_update: \"positions\" needs the cells of method 'mpm'; with gmm "
                             "and rkpm use \"deformation\" (volume from det F)",
                             c->file);
+    pm_check(jr_enum(&cx, a, "fbar", 0, fbar_modes, PM_FBAR_NONE, &v));
+    c->analysis.fbar = (pm_fbar_mode)v;
+    if (c->analysis.fbar != PM_FBAR_NONE && c->method != PM_METHOD_MPM)
+        return pm_case_fail(c->file, "analysis.fbar",
+                            "averages the volume change over background cells, which only method 'mpm' has; "
+                            "use \"none\" with gmm and rkpm",
+                            NULL);
+    if (c->analysis.fbar != PM_FBAR_NONE && c->formulation == PM_PLANE_STRESS)
+        return pm_case_fail(c->file, "analysis.fbar",
+                            "plane stress leaves the thickness free, so nothing locks; use \"none\"", NULL);
+    if (c->analysis.fbar != PM_FBAR_NONE && c->analysis.type != PM_ANALYSIS_EXPLICIT)
+        return pm_case_fail(c->file, "analysis.fbar",
+                            "is available in explicit analyses only so far; use \"none\" with implicit and "
+                            "quasi_static",
+                            NULL);
     long n;
     pm_check(jr_int(&cx, a, "load_steps", 0, 10, 1, 100000000, &n));
     c->analysis.load_steps = (int)n;

@@ -4,6 +4,7 @@
  * passes (explicit_passes.c) and grid updates (explicit_grid.c).
  */
 #include "explicit_internal.h"
+#include "fbar.h"
 #include "flow.h"
 #include "meshfree_internal.h"
 
@@ -43,7 +44,10 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
         /* nd->vel now holds the re-projected velocity used for the strain rate */
         pm_xp_grid_velocity_from_momentum(s, nd->vel);
     }
-    const long failed = pm_xp_usl_finish(s, dt, musl, musl ? nd->vel : nd->vel_new);
+    const double *vs = musl ? nd->vel : nd->vel_new;
+    if (s->fbar && (bad = pm_fbar_prepare(s, vs, dt)) != LONG_MAX)
+        return fail_particle(s, bad, failure_text(s, bad));
+    const long failed = pm_xp_usl_finish(s, dt, musl, vs);
     if (failed != LONG_MAX)
         return fail_particle(s, failed, failure_text(s, failed));
     return PM_OK;
@@ -58,6 +62,8 @@ static int step_usf(pm_sim *s, double dt)
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
     pm_xp_grid_velocity_from_momentum(s, s->nd.vel);
+    if (s->fbar && (bad = pm_fbar_prepare(s, s->nd.vel, dt)) != LONG_MAX)
+        return fail_particle(s, bad, failure_text(s, bad));
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
@@ -81,6 +87,8 @@ static int step_newmark_pc(pm_sim *s, double dt)
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
     pm_xp_grid_velocity_from_momentum(s, s->nd.vel);
+    if (s->fbar && (bad = pm_fbar_prepare(s, s->nd.vel, dt)) != LONG_MAX)
+        return fail_particle(s, bad, failure_text(s, bad));
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
@@ -92,7 +100,9 @@ static int step_newmark_pc(pm_sim *s, double dt)
 int pm_sim_update_stresses(pm_sim *s, const double *nodal_v, double dt)
 {
     pm_check(s->approx->ops->connect(s->approx, &s->p));
-    const long bad = pm_xp_stress_only(s, nodal_v, dt);
+    long bad = s->fbar ? pm_fbar_prepare(s, nodal_v, dt) : LONG_MAX;
+    if (bad == LONG_MAX)
+        bad = pm_xp_stress_only(s, nodal_v, dt);
     return bad == LONG_MAX ? PM_OK : fail_particle(s, bad, failure_text(s, bad));
 }
 

@@ -10,6 +10,7 @@
  * the same code as the written-out 2-D ones.
  */
 #include "explicit_internal.h"
+#include "fbar.h"
 #include "point_update.h"
 
 #include "pmech/error.h"
@@ -382,7 +383,7 @@ void pm_xp_musl_project(pm_sim *s, double dt)
 /* USL and MUSL, last pass (see pm_xp_usl_finish). The LQ instance reads the four nodes once per run
  * of particles in one cell. */
 PM_BODY void usl_finish_body(pm_sim *s, size_t lo, size_t hi, double dt, int musl, const double *vs, pm_range_out *o,
-                             const int LQ)
+                             const int LQ, const int FB)
 {
     pm_particles *p = &s->p;
     const lq_grid q = lq_of(&s->grid);
@@ -429,6 +430,8 @@ PM_BODY void usl_finish_body(pm_sim *s, size_t lo, size_t hi, double dt, int mus
             for (int k = 0; k < nk; k++)
                 vr += SV(k, 0) * SN(k);
 #undef SV
+        if (FB) /* F-bar: the step's volume change is its cell's */
+            pm_fbar_scale_rate(s->fbar->alpha[i], axi, p->x[PM_DIM * i], dt, L, &vr);
         double w = 0;
         if (point_step(s, i, L, vr, dt, &w)) {
             o->bad = (long)i < o->bad ? (long)i : o->bad;
@@ -442,13 +445,23 @@ PM_BODY void usl_finish_body(pm_sim *s, size_t lo, size_t hi, double dt, int mus
 
 static void usl_finish_range(pm_sim *s, size_t lo, size_t hi, double dt, int musl, const double *vs, pm_range_out *o)
 {
-    usl_finish_body(s, lo, hi, dt, musl, vs, o, 0);
+    if (s->fbar)
+        usl_finish_body(s, lo, hi, dt, musl, vs, o, 0, 1);
+    else
+        usl_finish_body(s, lo, hi, dt, musl, vs, o, 0, 0);
 }
 
 PM_HOT static void usl_finish_range_lq(pm_sim *s, size_t lo, size_t hi, double dt, int musl, const double *vs,
                                        pm_range_out *o)
 {
-    usl_finish_body(s, lo, hi, dt, musl, vs, o, 1);
+    usl_finish_body(s, lo, hi, dt, musl, vs, o, 1, 0);
+}
+
+/* The F-bar copy of the LQ instance, so that the usual one carries no test for it. */
+static void usl_finish_range_lq_fbar(pm_sim *s, size_t lo, size_t hi, double dt, int musl, const double *vs,
+                                     pm_range_out *o)
+{
+    usl_finish_body(s, lo, hi, dt, musl, vs, o, 1, 1);
 }
 
 long pm_xp_usl_finish(pm_sim *s, double dt, int musl, const double *vs)
@@ -461,7 +474,9 @@ long pm_xp_usl_finish(pm_sim *s, double dt, int musl, const double *vs)
     {
         const size_t tid = (size_t)omp_get_thread_num(), used = (size_t)omp_get_num_threads();
         pm_range_out o = {LONG_MAX, 0};
-        if (lq)
+        if (lq && s->fbar)
+            usl_finish_range_lq_fbar(s, n * tid / used, n * (tid + 1) / used, dt, musl, vs, &o);
+        else if (lq)
             usl_finish_range_lq(s, n * tid / used, n * (tid + 1) / used, dt, musl, vs, &o);
         else
             usl_finish_range(s, n * tid / used, n * (tid + 1) / used, dt, musl, vs, &o);
@@ -481,6 +496,8 @@ static inline int stencil_stress(pm_sim *s, size_t i, const pm_stencil *st, cons
 {
     double L[4], vr;
     velocity_gradient(st, nv, L, &vr);
+    if (s->fbar)
+        pm_fbar_scale_rate(s->fbar->alpha[i], s->c->formulation == PM_AXISYMMETRIC, s->p.x[PM_DIM * i], dt, L, &vr);
     return point_step(s, i, L, vr, dt, wave);
 }
 

@@ -9,6 +9,7 @@
 #include "contact/contact.h"
 #include "flow.h"
 #include "core/seed.h"
+#include "fbar.h"
 #include "meshfree_internal.h"
 #include "point_update.h"
 #include "scatter.h"
@@ -146,6 +147,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads, s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
         (rc = pm_bc_setup(c, &s->grid, &s->nd)) != 0 ||
         (rc = pm_contact_create(c, &s->grid, pm_sim_frame_grid(s), &s->contact)) != 0 ||
+        (rc = pm_fbar_create(s)) != 0 ||
         (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
         goto fail;
     /* meshfree points are not binned by cell, and RKPM's particles are its nodes: never reordered */
@@ -188,6 +190,7 @@ void pm_sim_destroy(pm_sim *s)
     if (!s)
         return;
     pm_implicit_free(s);
+    pm_fbar_destroy(s);
     pm_approx_destroy(s->approx);
     pm_mf_destroy(s);
     pm_particles_free(&s->p);

@@ -74,6 +74,7 @@ struct pm_sim {
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
     struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
     struct pm_contact *contact; /**< contact surfaces (friction conditions) and the nodes touching them */
+    struct pm_fbar *fbar; /**< F-bar volumetric averaging (analysis.fbar; NULL when off) */
     struct pm_mf *mf;    /**< GMM/RKPM: node cloud, moving nodes, boundary rows (NULL for MPM); grid then
                               holds the cloud's nodes without cells */
     pm_scatter scatter;  /**< scatter strategy of the explicit steps (set at creation only) */
