@@ -112,7 +112,7 @@ static int setup_sink(const pm_case *c, const pm_grid *g, size_t k, pm_sink_run 
     if (s->type != PM_SINK_OUTLET || !s->side[0])
         return PM_OK;
     int axis, hi;
-    if (pm_grid_side_of(s->side, &axis, &hi) != 0)
+    if (!pm_grid_side_of(s->side, &axis, &hi))
         return pm_error_set(PM_EINPUT, "%s: sinks[%zu].boundary: unknown side \"%s\"", c->file, k, s->side);
     r->axis = axis;
     r->value = hi ? g->hi[axis] : g->lo[axis];

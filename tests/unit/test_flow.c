@@ -277,6 +277,13 @@ static void grid_exit_and_region(void **state)
     assert_int_equal(s->flow->snk[0].removed, 16);
     assert_int_equal(s->flow->snk[1].removed, 0);
     done(s);
+    /* an outlet on a grid side removes what leaves through it outwards */
+    snprintf(rest, sizeof rest, "%s, \"sinks\": [ { \"type\": \"outlet\", \"boundary\": \"x_min\" } ]", body);
+    s = make(0.3, 1e-3, 0, rest);
+    assert_true(s->flow->snk[0].axis == 0 && s->flow->snk[0].value == 0 && s->flow->snk[0].normal[0] == -1);
+    assert_int_equal(run_to(s, 0.3), PM_OK);
+    assert_int_equal(pm_sim_particles(s)->n, 0);
+    done(s);
 }
 
 /* With nothing on the grid, a step waits for the next release; the release raises the stable step's
