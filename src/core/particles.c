@@ -88,7 +88,9 @@ void pm_particles_copy(pm_particles *dst, size_t at, const pm_particles *src, si
     }
 }
 
-/* Stable compaction, field by field; everything before the first dropped particle stays put. */
+/* Stable compaction, field by field, moving each run of kept particles with one memmove (sinks remove
+ * a few particles at a time, so the runs are long); everything before the first dropped particle stays
+ * put. */
 size_t pm_particles_remove(pm_particles *p, const uint8_t *drop)
 {
     size_t first = 0;
@@ -100,13 +102,17 @@ size_t pm_particles_remove(pm_particles *p, const uint8_t *drop)
     for (size_t k = 0; k < N_FIELDS; k++) {
         const size_t row = fields[k].elem * field_width(p, k);
         char *a = *field_ptr(p, k);
-        size_t to = first;
-        for (size_t i = first; i < p->n; i++)
-            if (!drop[i]) {
-                if (row)
-                    memcpy(a + to * row, a + i * row, row);
-                to++;
-            }
+        size_t to = first, i = first;
+        while (i < p->n) {
+            while (i < p->n && drop[i])
+                i++;
+            const size_t start = i;
+            while (i < p->n && !drop[i])
+                i++;
+            if (row && i > start)
+                memmove(a + to * row, a + start * row, (i - start) * row);
+            to += i - start;
+        }
         kept = to;
     }
     const size_t removed = p->n - kept;

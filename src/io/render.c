@@ -83,6 +83,8 @@ int pm_render_particles(const char *path, const pm_grid *g, const pm_particles *
             hi = fmax(hi, v);
         }
     }
+    if (!(lo <= hi)) /* no particle (yet or any more, with sources and sinks): an empty frame of 0..1 */
+        lo = 0;
     if (!(hi > lo)) {
         hi = lo + 1;
     }
