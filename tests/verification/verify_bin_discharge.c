@@ -24,11 +24,12 @@
  *   such a window, and over 0.2-0.5 s the widest outlet still speeds up by 10 % (its start-up is
  *   longer), so the widths start at 8 cells and the window at 0.3 s;
  * - the exponent n of the least-squares fit ln W = ln a + n ln(D - D0) over the four widths, D0 scanned
- *   from 0 to 0.99 of the smallest width for the smallest residual: within 0.3 of 3/2 (the issue's
- *   tolerance). A fluid-like discharge (W proportional to D) gives n near 1 and fails.
+ *   from 0 to 0.99 of the smallest width for the smallest residual: within 0.3 of 3/2. A fluid-like
+ *   discharge (W proportional to D) gives n near 1 and fails.
  * Reported: D0 in cells, the exponent with D0 = 0 (pure power law), the rates against the fit, and
- * Beverloo's constant C = W / (rho sqrt(g) (D - D0)^1.5) of each width against their mean. The granular flow in explicit MPM is known to be too mobile (the
- * column collapse runs out too far); the exponent is what this test is about, not C.
+ * Beverloo's constant C = W / (rho sqrt(g) (D - D0)^1.5) of each width against their mean. Granular
+ * flow in explicit MPM is known to be too mobile (the column collapse runs out too far); the exponent
+ * is what this test is about, not C.
  */
 #include "verify_util.h"
 
