@@ -357,7 +357,8 @@ static int resolve_probes(pm_output *o, const pm_case *c, const pm_particles *p)
         } else {
             long i = nearest(p->x, p->n, cp->point);
             if (i < 0)
-                return pm_error_set(PM_EINPUT, "probes[%zu].point: there is no particle to follow", k);
+                return pm_error_set(PM_EINPUT, "probes[%zu].point: there is no particle at t = 0 to follow (a "
+                                    "point probe follows a particle of the start, not one a source releases later)", k);
             pr->particle0 = pr->particle = i;
             pr->id = p->id[i];
             pr->init_pos[0] = p->x[2 * i];
