@@ -152,7 +152,7 @@ static int check_mass_balance(void)
     pm_flow_totals_of(s, &ft);
     /* the check means something only if both happened, many times */
     ok &= ft.released >= 4 * s->flow->src[0].portion.n && ft.removed >= 100;
-    ok &= vu_report("bin fed and discharged", "max |released - removed - present| / released", b.worst, 0, b.worst,
+    ok &= vu_report("bin fed and discharged", "max abs(released - removed - present) / released", b.worst, 0, b.worst,
                     1e-11, secs);
     ok &= vu_report("bin fed and discharged", "steps whose particle counts do not balance", (double)b.count_errors, 0,
                     (double)b.count_errors, 0, secs);
