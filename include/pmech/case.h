@@ -64,6 +64,31 @@ typedef struct pm_case_body {
     double stress0_value[4];      /**< constant [sxx, syy, szz, sxy] */
 } pm_case_body;
 
+/** sources[]: material released during a run, a body's worth at a time (docs/input.md, `sources[]`). */
+typedef struct pm_case_source {
+    pm_case_body body;            /**< what one release fills: name, material, shape, particles, velocity, stress */
+    size_t n_times;               /**< releases at the listed times (0: periodic) */
+    double *times;                /**< ascending release times */
+    double start, period, until;  /**< periodic releases at start, start + period, ... while <= until */
+    int only_when_free;           /**< 1: a release is skipped while a particle lies in its region */
+} pm_case_source;
+
+/** What a sink removes: particles that cross a grid line segment, that lie in a region, or that
+ *  leave the grid anywhere. */
+typedef enum { PM_SINK_OUTLET = 0, PM_SINK_REGION = 1, PM_SINK_OUTSIDE_GRID = 2 } pm_sink_type;
+
+/** sinks[]: where particles leave the model. */
+typedef struct pm_case_sink {
+    char name[PM_NAME_MAX];
+    pm_sink_type type;
+    pm_shape shape;               /**< region */
+    char side[PM_NAME_MAX];       /**< outlet on a grid side (x_min, x_max, y_min, y_max); "" for a line */
+    int axis;                     /**< outlet line: 0 for x = value, 1 for y = value */
+    double value;
+    double range[2];              /**< outlet: its part from..to along the other axis */
+    double normal[2];             /**< outlet: the crossing direction that removes (zero: either) */
+} pm_case_sink;
+
 /** boundary_conditions[] */
 typedef struct pm_case_bc {
     pm_bc_type type;
@@ -155,6 +180,10 @@ typedef struct pm_case {
         double picture_range[2];     /**< fixed colour range of the pictures; NaN: one range over the run */
         int picture_width;           /**< picture width in pixels (default 800) */
     } output;
+    size_t n_sources;
+    pm_case_source *sources;      /**< particles of source k carry body index n_bodies + k */
+    size_t n_sinks;
+    pm_case_sink *sinks;
     void *doc;                    /**< the JSON document the case was read from (private; pm_case_set edits it) */
 } pm_case;
 
@@ -208,6 +237,15 @@ const char *pm_case_output_dir(const pm_case *c);
  * @return the number of warnings (may exceed @p cap)
  */
 size_t pm_case_warnings(const pm_case *c, char (*out)[PM_WARNING_LEN], size_t cap);
+
+/**
+ * @brief How many releases source @p k makes up to analysis.end_time (its listed times, or start,
+ *        start + period, ... up to until; a time within 1e-9 periods of a limit counts as inside).
+ */
+size_t pm_case_source_releases(const pm_case *c, size_t k);
+
+/** @brief The time of release @p j (0-based, below pm_case_source_releases()) of source @p k. */
+double pm_case_source_release_time(const pm_case *c, size_t k, size_t j);
 
 /*
  * Changing a loaded case by key path. A path names a key as docs/input.md does, with [i] for the

@@ -32,9 +32,11 @@ enum { PM_FXX = 0, PM_FXY = 1, PM_FYX = 2, PM_FYY = 3, PM_FZZ = 4 };
 /** Index of each entry of the stress in the per-particle block of pm_particles::stress. */
 enum { PM_SXX = 0, PM_SYY = 1, PM_SZZ = 2, PM_SXY = 3 };
 
-/** The material points of a simulation. All arrays hold n entries (times their width). */
+/** The material points of a simulation. All arrays have room for cap entries (times their width);
+ *  the first n are the particles. Sources append particles up to cap, sinks remove them. */
 typedef struct pm_particles {
     size_t n;          /**< number of particles */
+    size_t cap;        /**< room allocated, >= n: particles a run may hold at once */
     size_t n_state;    /**< history variables per particle (max over the materials) */
     double *x;         /**< current position, 2 per particle */
     double *x0;        /**< initial position, 2 per particle (displacement = x - x0) */
@@ -51,16 +53,40 @@ typedef struct pm_particles {
     int32_t *material; /**< index into the case's material list */
     int32_t *body;     /**< index into the case's body list */
     int32_t *cell;     /**< background cell containing the particle (-1 = outside) */
+    int32_t *id;       /**< identity that survives sorting, appends and removals: unique in a run */
 } pm_particles;
 
 /**
- * @brief Allocate arrays for @p n particles with @p n_state history variables each, zeroed.
+ * @brief Allocate arrays for @p n particles with @p n_state history variables each, zeroed; the ids
+ *        are 0..n-1. The capacity is n.
  * @param p the struct to fill (its previous content is ignored)
  * @param n particle count
  * @param n_state history variables per particle
  * @return PM_OK, or PM_ENOMEM with a message giving the bytes requested
  */
 int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state);
+
+/**
+ * @brief As pm_particles_alloc(), with room for @p cap particles (cap >= n), so that particles can be
+ *        appended later without allocating.
+ * @return PM_OK, or PM_ENOMEM with a message giving the bytes requested
+ */
+int pm_particles_alloc_capacity(pm_particles *p, size_t n, size_t cap, size_t n_state);
+
+/**
+ * @brief Copy @p count particles, every field, from @p src (from index @p from) into @p dst (at index
+ *        @p at). Both must have the same n_state; the ranges must lie within their capacities. n of
+ *        neither changes: the caller appends by raising dst->n.
+ */
+void pm_particles_copy(pm_particles *dst, size_t at, const pm_particles *src, size_t from, size_t count);
+
+/**
+ * @brief Remove the particles whose @p drop entry is non-zero, keeping the others in their order.
+ * @param p particles
+ * @param drop one flag per particle (n entries)
+ * @return the number removed; p->n is lowered by it
+ */
+size_t pm_particles_remove(pm_particles *p, const uint8_t *drop);
 
 /** @brief Free every array and zero the struct. Safe on a zeroed struct. */
 void pm_particles_free(pm_particles *p);

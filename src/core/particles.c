@@ -23,6 +23,7 @@ static const field_row fields[] = {
     FIELD(vol0, double, 1),        FIELD(F, double, PM_NF),     FIELD(stress, double, PM_NS),
     FIELD(eps_p, double, 1),       FIELD(state, double, 0),     FIELD(hsize, double, PM_DIM),
     FIELD(material, int32_t, 1),   FIELD(body, int32_t, 1),     FIELD(cell, int32_t, 1),
+    FIELD(id, int32_t, 1),
 };
 #undef FIELD
 #define N_FIELDS (sizeof fields / sizeof fields[0])
@@ -45,12 +46,15 @@ size_t pm_particles_bytes_per_particle(size_t n_state)
     return b;
 }
 
-int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state)
+int pm_particles_alloc_capacity(pm_particles *p, size_t n, size_t cap, size_t n_state)
 {
     memset(p, 0, sizeof *p);
+    if (cap < n)
+        cap = n;
     p->n = n;
+    p->cap = cap;
     p->n_state = n_state;
-    size_t cnt = n ? n : 1;
+    size_t cnt = cap ? cap : 1;
     for (size_t k = 0; k < N_FIELDS; k++) {
         const size_t w = field_width(p, k);
         void **arr = field_ptr(p, k);
@@ -58,11 +62,62 @@ int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state)
         if (!*arr)
             goto fail;
     }
+    for (size_t i = 0; i < n; i++)
+        p->id[i] = (int32_t)i;
     return PM_OK;
 fail:
     pm_particles_free(p);
-    return pm_error_set(PM_ENOMEM, "cannot allocate %zu particles (%zu bytes)", n,
-                        n * pm_particles_bytes_per_particle(n_state));
+    return pm_error_set(PM_ENOMEM, "cannot allocate %zu particles (%zu bytes)", cap,
+                        cap * pm_particles_bytes_per_particle(n_state));
+}
+
+int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state)
+{
+    return pm_particles_alloc_capacity(p, n, n, n_state);
+}
+
+void pm_particles_copy(pm_particles *dst, size_t at, const pm_particles *src, size_t from, size_t count)
+{
+    for (size_t k = 0; k < N_FIELDS; k++) {
+        const size_t row = fields[k].elem * field_width(dst, k);
+        if (row == 0 || count == 0)
+            continue;
+        char *d = *field_ptr(dst, k);
+        const char *s = *(void *const *)((const char *)src + fields[k].offset);
+        memcpy(d + at * row, s + from * row, count * row);
+    }
+}
+
+/* Stable compaction, field by field, moving each run of kept particles with one memmove (sinks remove
+ * a few particles at a time, so the runs are long); everything before the first dropped particle stays
+ * put. */
+size_t pm_particles_remove(pm_particles *p, const uint8_t *drop)
+{
+    size_t first = 0;
+    while (first < p->n && !drop[first])
+        first++;
+    if (first == p->n)
+        return 0;
+    size_t kept = first;
+    for (size_t k = 0; k < N_FIELDS; k++) {
+        const size_t row = fields[k].elem * field_width(p, k);
+        char *a = *field_ptr(p, k);
+        size_t to = first, i = first;
+        while (i < p->n) {
+            while (i < p->n && drop[i])
+                i++;
+            const size_t start = i;
+            while (i < p->n && !drop[i])
+                i++;
+            if (row && i > start)
+                memmove(a + to * row, a + start * row, (i - start) * row);
+            to += i - start;
+        }
+        kept = to;
+    }
+    const size_t removed = p->n - kept;
+    p->n = kept;
+    return removed;
 }
 
 void pm_particles_free(pm_particles *p)

@@ -205,10 +205,10 @@ static int cell_may_touch(const pm_grid *g, size_t cell, const double lo[2], con
     return clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1];
 }
 
-/* Visit every quadrature point of body b inside its shape; fill particles when p != NULL. */
-static size_t seed_body(const pm_case *c, size_t b, const pm_grid *g, pm_particles *p, size_t first)
+/* Visit every quadrature point of a body inside its shape; fill particles (body index b) when p != NULL. */
+static size_t seed_body(const pm_case *c, const pm_case_body *body, int32_t b, const pm_grid *g, pm_particles *p,
+                        size_t first)
 {
-    const pm_case_body *body = &c->bodies[b];
     int n = ppc_of(body, g);
     double lo[2], hi[2];
     shape_box(&body->shape, lo, hi);
@@ -241,7 +241,7 @@ static size_t seed_body(const pm_case *c, size_t b, const pm_grid *g, pm_particl
                 double *F = p->F + PM_NF * k;
                 F[PM_FXX] = F[PM_FYY] = F[PM_FZZ] = 1.0;
                 p->material[k] = body->material;
-                p->body[k] = (int32_t)b;
+                p->body[k] = b;
                 p->cell[k] = (int32_t)cell;
             }
             k++;
@@ -254,7 +254,7 @@ int pm_seed_count(const pm_case *c, const pm_grid *g, size_t *per_body, size_t *
 {
     *total = 0;
     for (size_t b = 0; b < c->n_bodies; b++) {
-        per_body[b] = seed_body(c, b, g, NULL, 0);
+        per_body[b] = seed_body(c, &c->bodies[b], (int32_t)b, g, NULL, 0);
         if (per_body[b] == 0 && c->bodies[b].shape.type == PM_SHAPE_GMSH_GROUP)
             return pm_error_set(PM_EINPUT, "%s: bodies[%zu].shape.name: the mesh has no 2-D physical group '%s'",
                                 c->file, b, c->bodies[b].shape.group);
@@ -284,22 +284,42 @@ static void initial_stress(const pm_case *c, const pm_case_body *b, const double
     }
 }
 
-int pm_seed_fill(const pm_case *c, const pm_grid *g, pm_particles *p)
+/* Initial stress and material state of particles [first, first + n) of one body. */
+static void init_stress(const pm_case *c, const pm_case_body *b, pm_particles *p, size_t first, size_t n)
 {
-    size_t k = 0;
-    for (size_t b = 0; b < c->n_bodies; b++)
-        k += seed_body(c, b, g, p, k);
-    if (k != p->n)
-        return pm_error_set(PM_EINTERNAL, "seeding produced %zu particles, %zu expected", k, p->n);
-    for (size_t i = 0; i < p->n; i++) {
-        const pm_case_body *b = &c->bodies[p->body[i]];
-        const pm_material *m = &c->materials[b->material];
+    const pm_material *m = &c->materials[b->material];
+    for (size_t i = first; i < first + n; i++) {
         double *s = p->stress + PM_NS * i;
-        initial_stress(c, b, p->x + 2 * i, s);
+        initial_stress(c, b, p->x + PM_DIM * i, s);
         if (m->ops->init_state && p->n_state) {
             double s6[6] = {s[PM_SXX], s[PM_SYY], s[PM_SZZ], s[PM_SXY], 0, 0};
             m->ops->init_state(m, s6, p->state + p->n_state * i);
         }
     }
+}
+
+int pm_seed_fill(const pm_case *c, const pm_grid *g, pm_particles *p)
+{
+    size_t k = 0;
+    for (size_t b = 0; b < c->n_bodies; b++) {
+        const size_t n = seed_body(c, &c->bodies[b], (int32_t)b, g, p, k);
+        init_stress(c, &c->bodies[b], p, k, n);
+        k += n;
+    }
+    if (k != p->n)
+        return pm_error_set(PM_EINTERNAL, "seeding produced %zu particles, %zu expected", k, p->n);
     return PM_OK;
+}
+
+size_t pm_seed_body_count(const pm_case *c, const pm_case_body *b, const pm_grid *g)
+{
+    return seed_body(c, b, 0, g, NULL, 0);
+}
+
+size_t pm_seed_body_fill(const pm_case *c, const pm_case_body *b, int32_t index, const pm_grid *g, pm_particles *p,
+                         size_t first)
+{
+    const size_t n = seed_body(c, b, index, g, p, first);
+    init_stress(c, b, p, first, n);
+    return n;
 }

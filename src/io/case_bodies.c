@@ -52,7 +52,7 @@ static int find_material(const pm_case *c, const char *path, const char *name, i
                         list);
 }
 
-static int parse_shape(pm_case *c, const char *path, json_t *sh, pm_shape *s)
+int pm_case_parse_shape(pm_case *c, const char *path, json_t *sh, pm_shape *s)
 {
     jr_ctx cx = {c->file, path};
     if (!json_is_object(sh))
@@ -162,15 +162,76 @@ void pm_case_shape_box(const pm_shape *s, double lo[PM_DIM], double hi[PM_DIM])
     }
 }
 
+/* A name must not repeat among the bodies and sources before it: output, probes and pictures tell
+ * bodies and sources apart by it. */
+static int check_unique_name(const pm_case *c, const char *path, const char *name, size_t n_bodies)
+{
+    for (size_t j = 0; j < n_bodies; j++)
+        if (!strcmp(c->bodies[j].name, name))
+            return pm_error_set(PM_EINPUT, "%s: %s.name: \"%s\" is already the name of bodies[%zu]", c->file, path,
+                                name, j);
+    for (size_t j = 0; j < c->n_sources; j++)
+        if (!strcmp(c->sources[j].body.name, name))
+            return pm_error_set(PM_EINPUT, "%s: %s.name: \"%s\" is already the name of sources[%zu]", c->file, path,
+                                name, j);
+    return PM_OK;
+}
+
+int pm_case_parse_body(pm_case *c, const char *path, json_t *b, const char *def_name, size_t n_before,
+                       pm_case_body *body)
+{
+    jr_ctx cx = {c->file, path};
+    pm_check(jr_string(&cx, b, "name", 0, def_name, body->name, sizeof body->name));
+    pm_check(check_unique_name(c, path, body->name, n_before));
+    char mat[PM_NAME_MAX];
+    pm_check(jr_string(&cx, b, "material", JR_REQUIRED, NULL, mat, sizeof mat));
+    pm_check(find_material(c, path, mat, &body->material));
+    json_t *sh = json_object_get(b, "shape");
+    char sp[96];
+    jr_join(sp, sizeof sp, path, "shape");
+    if (!sh)
+        return pm_case_fail(c->file, sp, "required key is missing", NULL);
+    pm_check(pm_case_parse_shape(c, sp, sh, &body->shape));
+    long ppc;
+    pm_check(jr_int(&cx, b, "particles_per_cell", 0, 0, 1, 6, &ppc));
+    if (c->grid.element == PM_TRI3 && ppc != 0 && ppc != 1 && ppc != 3 && ppc != 6)
+        return pm_error_set(PM_EINPUT, "%s: %s.particles_per_cell: got %ld; allowed on tri3 grids: 1, 3 or 6",
+                            c->file, path, ppc);
+    body->particles_per_cell = (int)ppc;
+    const double zero[PM_DIM] = {0, 0};
+    pm_check(jr_vec2(&cx, b, "velocity", 0, zero, body->velocity));
+    pm_check(parse_initial_stress(c, path, b, body));
+    if (c->grid.type == PM_GRID_RECTANGLE) {
+        double lo[PM_DIM], hi[PM_DIM], glo[PM_DIM], ghi[PM_DIM];
+        pm_case_shape_box(&body->shape, lo, hi);
+        const double tol = 1e-9 * fmax(c->grid.size[0], c->grid.size[1]);
+        for (int d = 0; d < PM_DIM; d++) {
+            glo[d] = c->grid.origin[d];
+            ghi[d] = c->grid.origin[d] + c->grid.size[d];
+        }
+        if (lo[0] < glo[0] - tol || lo[1] < glo[1] - tol || hi[0] > ghi[0] + tol || hi[1] > ghi[1] + tol)
+            return pm_error_set(PM_EINPUT,
+                                "%s: %s.shape: the %s spans [%g, %g] x [%g, %g], outside the grid [%g, %g] x "
+                                "[%g, %g]; enlarge the grid or move the %s",
+                                c->file, path, strncmp(path, "sources", 7) ? "body" : "source", lo[0], hi[0], lo[1],
+                                hi[1], glo[0], ghi[0], glo[1], ghi[1],
+                                strncmp(path, "sources", 7) ? "body" : "source");
+    }
+    return PM_OK;
+}
+
 int pm_case_parse_bodies(pm_case *c, json_t *bs)
 {
+    /* a case whose material all comes from sources (a bin filled by portions) may start empty */
+    if (!bs && c->n_sources)
+        return PM_OK;
     if (!bs)
         return pm_case_fail(c->file, "bodies", "required key is missing", NULL);
-    if (!json_is_array(bs) || json_array_size(bs) == 0)
+    if (!json_is_array(bs) || (json_array_size(bs) == 0 && !c->n_sources))
         return pm_error_set(PM_EINPUT, "%s: bodies: expected a non-empty list of bodies, got %s", c->file,
                             jr_text(bs));
     c->n_bodies = json_array_size(bs);
-    c->bodies = calloc(c->n_bodies, sizeof *c->bodies);
+    c->bodies = calloc(c->n_bodies ? c->n_bodies : 1, sizeof *c->bodies);
     if (!c->bodies)
         return pm_error_set(PM_ENOMEM, "out of memory");
     for (size_t i = 0; i < c->n_bodies; i++) {
@@ -178,48 +239,11 @@ int pm_case_parse_bodies(pm_case *c, json_t *bs)
         jr_index(path, sizeof path, "bodies", i);
         jr_ctx cx = {c->file, path};
         json_t *b = json_array_get(bs, i);
-        pm_case_body *body = &c->bodies[i];
         if (!json_is_object(b))
             return pm_error_set(PM_EINPUT, "%s: %s: expected an object, got %s", c->file, path, jr_type(b));
         pm_check(jr_only_keys(&cx, b, pm_case_keys(PM_KEYS_BODY)));
         snprintf(def, sizeof def, "body%zu", i);
-        pm_check(jr_string(&cx, b, "name", 0, def, body->name, sizeof body->name));
-        for (size_t j = 0; j < i; j++)
-            if (!strcmp(c->bodies[j].name, body->name))
-                return pm_error_set(PM_EINPUT, "%s: %s.name: \"%s\" is already the name of bodies[%zu]", c->file, path,
-                                    body->name, j);
-        char mat[PM_NAME_MAX];
-        pm_check(jr_string(&cx, b, "material", JR_REQUIRED, NULL, mat, sizeof mat));
-        pm_check(find_material(c, path, mat, &body->material));
-        json_t *sh = json_object_get(b, "shape");
-        char sp[96];
-        jr_join(sp, sizeof sp, path, "shape");
-        if (!sh)
-            return pm_case_fail(c->file, sp, "required key is missing", NULL);
-        pm_check(parse_shape(c, sp, sh, &body->shape));
-        long ppc;
-        pm_check(jr_int(&cx, b, "particles_per_cell", 0, 0, 1, 6, &ppc));
-        if (c->grid.element == PM_TRI3 && ppc != 0 && ppc != 1 && ppc != 3 && ppc != 6)
-            return pm_error_set(PM_EINPUT, "%s: %s.particles_per_cell: got %ld; allowed on tri3 grids: 1, 3 or 6",
-                                c->file, path, ppc);
-        body->particles_per_cell = (int)ppc;
-        const double zero[PM_DIM] = {0, 0};
-        pm_check(jr_vec2(&cx, b, "velocity", 0, zero, body->velocity));
-        pm_check(parse_initial_stress(c, path, b, body));
-        if (c->grid.type == PM_GRID_RECTANGLE) {
-            double lo[PM_DIM], hi[PM_DIM], glo[PM_DIM], ghi[PM_DIM];
-            pm_case_shape_box(&body->shape, lo, hi);
-            const double tol = 1e-9 * fmax(c->grid.size[0], c->grid.size[1]);
-            for (int d = 0; d < PM_DIM; d++) {
-                glo[d] = c->grid.origin[d];
-                ghi[d] = c->grid.origin[d] + c->grid.size[d];
-            }
-            if (lo[0] < glo[0] - tol || lo[1] < glo[1] - tol || hi[0] > ghi[0] + tol || hi[1] > ghi[1] + tol)
-                return pm_error_set(PM_EINPUT,
-                                    "%s: %s.shape: the body spans [%g, %g] x [%g, %g], outside the grid [%g, %g] x "
-                                    "[%g, %g]; enlarge the grid or move the body",
-                                    c->file, path, lo[0], hi[0], lo[1], hi[1], glo[0], ghi[0], glo[1], ghi[1]);
-        }
+        pm_check(pm_case_parse_body(c, path, b, def, i, &c->bodies[i]));
     }
     return PM_OK;
 }

@@ -102,10 +102,12 @@ static int parse_root(pm_case *c, json_t *root)
     pm_check(pm_case_parse_grid(c, g));
     pm_check(pm_case_parse_materials(c, json_object_get(root, "materials")));
     pm_check(pm_case_check_strength_reduction(c));
+    pm_check(pm_case_parse_sources(c, json_object_get(root, "sources")));
     pm_check(pm_case_parse_bodies(c, json_object_get(root, "bodies")));
     pm_check(pm_case_parse_bcs(c, json_object_get(root, "boundary_conditions")));
     pm_check(pm_case_parse_probes(c, json_object_get(root, "probes")));
     pm_check(pm_case_parse_output(c, json_object_get(root, "output")));
+    pm_check(pm_case_parse_sinks(c, json_object_get(root, "sinks")));
     return pm_case_check_sizes(c);
 }
 
@@ -175,6 +177,14 @@ void pm_case_free(pm_case *c)
     for (size_t b = 0; b < c->n_bodies && c->bodies; b++)
         free(c->bodies[b].shape.points);
     free(c->bodies);
+    for (size_t k = 0; k < c->n_sources && c->sources; k++) {
+        free(c->sources[k].body.shape.points);
+        free(c->sources[k].times);
+    }
+    free(c->sources);
+    for (size_t k = 0; k < c->n_sinks && c->sinks; k++)
+        free(c->sinks[k].shape.points);
+    free(c->sinks);
     free(c->materials);
     free(c->bcs);
     free(c->probes);

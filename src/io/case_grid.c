@@ -82,6 +82,13 @@ int pm_case_check_sizes(const pm_case *c)
         double per_cell = c->grid.element == PM_QUAD4 ? (double)(n ? n : 2) * (n ? n : 2) : 2.0 * (n ? n : 3);
         particles += (hi[0] - lo[0]) * (hi[1] - lo[1]) / cell_area * per_cell;
     }
+    for (size_t k = 0; k < c->n_sources; k++) { /* room for every release is allocated at the start */
+        double lo[PM_DIM], hi[PM_DIM];
+        pm_case_shape_box(&c->sources[k].body.shape, lo, hi);
+        int n = c->sources[k].body.particles_per_cell;
+        double per_cell = c->grid.element == PM_QUAD4 ? (double)(n ? n : 2) * (n ? n : 2) : 2.0 * (n ? n : 3);
+        particles += (hi[0] - lo[0]) * (hi[1] - lo[1]) / cell_area * per_cell * (double)pm_case_source_releases(c, k);
+    }
     const double nodes = (double)(c->grid.cells[0] + 1) * (double)(c->grid.cells[1] + 1);
     const double bytes = particles * 220.0 + nodes * 120.0;
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);

@@ -33,6 +33,11 @@ typedef enum pm_case_keyset_id {
     PM_KEYS_BC_LINE,
     PM_KEYS_PROBE,
     PM_KEYS_OUTPUT,
+    PM_KEYS_SOURCE,
+    PM_KEYS_SINK_OUTLET,
+    PM_KEYS_SINK_REGION,
+    PM_KEYS_SINK_OUTSIDE_GRID,
+    PM_KEYS_SINK_LINE,
     PM_KEYS_COUNT
 } pm_case_keyset_id;
 
@@ -76,8 +81,26 @@ int pm_case_check_sizes(const pm_case *c);
 /** `materials`: a non-empty list of uniquely named materials. */
 int pm_case_parse_materials(pm_case *c, json_t *ms);
 
-/** `bodies`: after the grid and the materials, which the bodies name and must lie in. */
+/** `bodies`: after the grid, the materials and the sources (a case with sources may have no body). */
 int pm_case_parse_bodies(pm_case *c, json_t *bs);
+
+/**
+ * The keys a body and a source share (all of a body's): name (default @p def_name, unique among the
+ * first @p n_before bodies and the sources parsed so far), material, shape, particles_per_cell,
+ * velocity, initial stress; the shape must lie inside a rectangle grid. The caller checks which keys
+ * the object may have.
+ */
+int pm_case_parse_body(pm_case *c, const char *path, json_t *b, const char *def_name, size_t n_before,
+                       pm_case_body *body);
+
+/** `sources`: after the grid, the materials and the analysis (explicit MPM only). */
+int pm_case_parse_sources(pm_case *c, json_t *ss);
+
+/** `sinks`: after the grid and the analysis (explicit MPM only). */
+int pm_case_parse_sinks(pm_case *c, json_t *ss);
+
+/** A shape object (rectangle, polygon, circle, gmsh_group) at key path @p path. */
+int pm_case_parse_shape(pm_case *c, const char *path, json_t *sh, pm_shape *s);
 
 /** The bounding box of a shape; NaN for a gmsh group, whose extent only the mesh knows. */
 void pm_case_shape_box(const pm_shape *s, double lo[PM_DIM], double hi[PM_DIM]);

@@ -7,7 +7,7 @@
 
 static const char *const top_keys[] = {"title", "dimension", "formulation", "method", "shape_function", "lme_gamma",
                                        "support_radius", "max_condition", "analysis", "grid", "materials", "bodies",
-                                       "boundary_conditions", "output", "probes", NULL};
+                                       "boundary_conditions", "output", "probes", "sources", "sinks", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
                                             "gravity_ramp_time", "damping", "newton", "load_steps",
                                             "density_update", "strength_reduction", "fbar", NULL};
@@ -30,6 +30,13 @@ static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const probe_keys[] = {"name", "quantity", "point", "body", NULL};
 static const char *const output_keys[] = {"directory", "interval", "probe_interval", "pictures", "picture_range",
                                           "picture_width", NULL};
+static const char *const source_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
+                                          "initial_stress", "k0", "surface_y", "times", "start", "period",
+                                          "until", "only_when_free", NULL};
+static const char *const sink_outlet[] = {"type", "name", "boundary", NULL},
+                         *const sink_region[] = {"type", "name", "shape", NULL},
+                         *const sink_outside[] = {"type", "name", NULL};
+static const char *const sink_line[] = {"x", "y", "from", "to", "normal", NULL};
 
 static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_TOP] = {"", NULL, top_keys},
@@ -50,6 +57,11 @@ static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_BC_LINE] = {"boundary_conditions[].boundary", NULL, line_keys},
     [PM_KEYS_PROBE] = {"probes[]", NULL, probe_keys},
     [PM_KEYS_OUTPUT] = {"output", NULL, output_keys},
+    [PM_KEYS_SOURCE] = {"sources[]", NULL, source_keys},
+    [PM_KEYS_SINK_OUTLET] = {"sinks[]", "outlet", sink_outlet},
+    [PM_KEYS_SINK_REGION] = {"sinks[]", "region", sink_region},
+    [PM_KEYS_SINK_OUTSIDE_GRID] = {"sinks[]", "outside_grid", sink_outside},
+    [PM_KEYS_SINK_LINE] = {"sinks[].boundary", NULL, sink_line},
 };
 
 const char *const *pm_case_keys(pm_case_keyset_id id) { return table[id].keys; }

@@ -36,8 +36,9 @@ typedef struct probe {
     pm_quantity quantity;
     int body;               /* -1: point probe */
     long particle0;         /* followed particle at t = 0 */
-    long particle;          /* its index now (particles may be reordered) */
-    double key[2];          /* its initial position x0, which identifies it after reordering */
+    long particle;          /* its index now (particles may be reordered; -1: a sink removed it) */
+    int32_t id;             /* its identity (pm_particles::id), which survives reordering */
+    int gone;               /* a sink removed it: its series has ended */
     double init_pos[2];     /* position (body: centre of mass) at t = 0 */
 } probe;
 
@@ -277,7 +278,8 @@ static int is_frame_name(const char *s)
 static int remove_stale(const char *dir, int keep_probes)
 {
     static const char *const names[] = { "particles.pvd", "run.json", "particles.pvd.tmp",
-                                         "run.json.tmp", "grid.vtu.tmp", "probes.csv", "grid.pvd", "grid.pvd.tmp" };
+                                         "run.json.tmp", "grid.vtu.tmp", "probes.csv", "grid.pvd", "grid.pvd.tmp",
+                                         "releases.csv", "removals.csv" };
     DIR *d = opendir(dir);
     if (!d)
         return pm_error_set(PM_EIO, "cannot read directory '%s': %s", dir, strerror(errno));
@@ -364,10 +366,10 @@ static int resolve_probes(pm_output *o, const pm_case *c, const pm_particles *p)
         } else {
             long i = nearest(p->x, p->n, cp->point);
             if (i < 0)
-                return pm_error_set(PM_EINPUT, "probes[%zu].point: there is no particle to follow", k);
+                return pm_error_set(PM_EINPUT, "probes[%zu].point: there is no particle at t = 0 to follow (a "
+                                    "point probe follows a particle of the start, not one a source releases later)", k);
             pr->particle0 = pr->particle = i;
-            pr->key[0] = p->x0[2 * i];
-            pr->key[1] = p->x0[2 * i + 1];
+            pr->id = p->id[i];
             pr->init_pos[0] = p->x[2 * i];
             pr->init_pos[1] = p->x[2 * i + 1];
         }
@@ -496,17 +498,17 @@ int pm_output_grid_frame(pm_output *o, const pm_grid *g, const pm_vtu_grid_field
     return write_pvd_of(o, "grid");
 }
 
-/* Re-find a followed particle after the particle arrays were reordered: by its initial
- * position (first match; if none matches exactly, the nearest initial position). */
+/* Re-find a followed particle after the particle arrays were reordered, by its id; -1 once a sink
+ * removed it. */
 static long refind(const probe *pr, const pm_particles *p)
 {
     long i = pr->particle;
-    if (i >= 0 && (size_t)i < p->n && p->x0[2 * i] == pr->key[0] && p->x0[2 * i + 1] == pr->key[1])
+    if (i >= 0 && (size_t)i < p->n && p->id[i] == pr->id)
         return i;
     for (size_t j = 0; j < p->n; j++)
-        if (p->x0[2 * j] == pr->key[0] && p->x0[2 * j + 1] == pr->key[1])
+        if (p->id[j] == pr->id)
             return (long)j;
-    return nearest(p->x0, p->n, pr->key);
+    return -1;
 }
 
 int pm_output_probes(pm_output *o, double t, const pm_particles *p)
@@ -529,9 +531,13 @@ int pm_output_probes(pm_output *o, double t, const pm_particles *p)
         if (pr->body >= 0) {
             body_mean(p, pr->body, pr->quantity, v);
         } else {
-            pr->particle = refind(pr, p);
-            if (pr->particle < 0)
-                return pm_error_set(PM_EINTERNAL, "probe '%s': no particle left to follow", pr->name);
+            pr->particle = pr->gone ? -1 : refind(pr, p);
+            pr->gone = pr->particle < 0;
+            if (pr->gone) { /* removed by a sink: the series ends in empty cells */
+                for (int j = 0; j < nc; j++)
+                    pm_check(csv_add(c, ","));
+                continue;
+            }
             particle_value(p, (size_t)pr->particle, pr->quantity, v);
         }
         for (int j = 0; j < nc; j++)

@@ -28,8 +28,8 @@ typedef struct pm_run_summary {
     double end_time;                /**< simulated time reached */
     double wall_seconds;            /**< whole run */
     double loop_seconds;            /**< time loop only (no setup, no file output) */
-    double particle_steps_per_second; /**< particles * steps / loop_seconds */
-    size_t particles;               /**< particle count */
+    double particle_steps_per_second; /**< particles summed over the steps / loop_seconds */
+    size_t particles;               /**< particle count at the end */
     int exit_status;                /**< 0, 1 or 2 as the program exits */
     const char *message;            /**< error message ("" on success) */
     int threads;                    /**< OpenMP threads used */
@@ -40,6 +40,12 @@ typedef struct pm_run_summary {
     double solve_seconds;           /**< implicit: sparse factorisations and solves */
     const char (*warnings)[PM_WARNING_LEN]; /**< warnings of the run (pm_case_warnings and the run's own) */
     size_t n_warnings;              /**< their count */
+    int flow;                       /**< 1: the case has sources or sinks (the fields below are written) */
+    size_t particles_max;           /**< most particles held at once */
+    size_t particles_released;      /**< particles the sources released (at t = 0 too) */
+    size_t particles_removed;       /**< particles the sinks removed */
+    double mass_released;           /**< their mass */
+    double mass_removed;
 } pm_run_summary;
 
 /**

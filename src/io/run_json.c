@@ -66,6 +66,13 @@ int pm_run_json_write(const char *path, const pm_run_summary *s, const pm_probe_
         for (size_t k = 0; w && k < s->n_warnings; k++)
             bad |= json_array_append_new(w, str(s->warnings[k])) != 0;
         bad |= put(root, "warnings", w ? w : json_null());
+        if (s->flow) {
+            bad |= put(root, "particles_max", json_integer((json_int_t)s->particles_max));
+            bad |= put(root, "particles_released", json_integer((json_int_t)s->particles_released));
+            bad |= put(root, "particles_removed", json_integer((json_int_t)s->particles_removed));
+            bad |= put(root, "mass_released", real(s->mass_released));
+            bad |= put(root, "mass_removed", real(s->mass_removed));
+        }
         if (s->implicit) {
             bad |= put(root, "newton_iterations", json_integer(s->newton_iterations));
             bad |= put(root, "step_cuts", json_integer(s->step_cuts));

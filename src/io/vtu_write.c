@@ -163,6 +163,7 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         { "deviatoric_strain", PM_VTU_F64, 1, NULL },
         { "deformation_gradient", PM_VTU_F64, PM_NF, f_names },
         { "half_size", PM_VTU_F64, PM_DIM, NULL },
+        { "id", PM_VTU_I32, 1, NULL },
     };
     const size_t n = p->n;
     const pm_vtu_piece pc = { n, n, n, arrays, sizeof arrays / sizeof arrays[0], &t };
@@ -199,6 +200,8 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         rc = pm_vtu_write_block(f, p->F, PM_NF * n * sizeof(double));
     if (!rc)
         rc = pm_vtu_write_block(f, p->hsize, PM_DIM * n * sizeof(double));
+    if (!rc)
+        rc = pm_vtu_write_block(f, p->id, n * sizeof(int32_t));
     if (!rc) {
         fill_vec3(scratch, p->x, NULL, n);
         rc = pm_vtu_write_block(f, scratch, 3 * n * sizeof(double));

@@ -388,8 +388,9 @@ static int neighbours(const lme_data *ld, const double x[2], int32_t cand[PM_SHA
 }
 
 /*
- * Locate the cells; on the first call for this many particles also size the per-particle slots
- * (set-up time: the solvers connect once before the first step, so no step allocates).
+ * Locate the cells; on the first call also size the per-particle slots for every particle the arrays
+ * can hold (set-up time: the solvers connect once before the first step, and sources append
+ * particles only up to the capacity, so no step allocates).
  */
 static int lme_connect(pm_approx *a, pm_particles *p)
 {
@@ -398,7 +399,8 @@ static int lme_connect(pm_approx *a, pm_particles *p)
         return rc;
     lme_data *ld = a->data;
     lme_cache *c = &ld->cache;
-    if (c->cap >= p->n)
+    const size_t want = p->cap > p->n ? p->cap : p->n;
+    if (c->cap >= want)
         return PM_OK;
     int widest = 0;
     for (size_t i = 0; i < p->n; i++) {
@@ -407,11 +409,18 @@ static int lme_connect(pm_approx *a, pm_particles *p)
         int nc = neighbours(ld, p->x + 2 * i, cand, dist2);
         widest = nc > widest ? nc : widest;
     }
+    if (p->n == 0) { /* all particles are still to be released: size for a point inside the grid */
+        const pm_grid *g = a->grid;
+        const double mid[2] = {0.5 * (g->lo[0] + g->hi[0]), 0.5 * (g->lo[1] + g->hi[1])};
+        int32_t cand[PM_SHAPE_CAND_MAX];
+        double dist2[PM_SHAPE_CAND_MAX];
+        widest = neighbours(ld, mid, cand, dist2);
+    }
     cache_free(c);
     /* particles move: leave room for a few more nodes than any has now */
     int width = widest + widest / 4 + 4;
     width = width > PM_STENCIL_MAX ? PM_STENCIL_MAX : width;
-    const size_t n = p->n ? p->n : 1, w = (size_t)width;
+    const size_t n = want ? want : 1, w = (size_t)width;
     c->xs = malloc(2 * n * sizeof(double));
     c->lam = malloc(2 * n * sizeof(double));
     c->n = calloc(n, sizeof(int));
@@ -420,11 +429,11 @@ static int lme_connect(pm_approx *a, pm_particles *p)
     c->dN = malloc(n * w * sizeof *c->dN);
     if (!c->xs || !c->lam || !c->n || !c->node || !c->N || !c->dN) {
         cache_free(c);
-        return pm_error_set(PM_ENOMEM, "lme: out of memory for the stencils of %zu particles", p->n);
+        return pm_error_set(PM_ENOMEM, "lme: out of memory for the stencils of %zu particles", want);
     }
     for (size_t i = 0; i < 2 * n; i++)
         c->xs[i] = NAN;
-    c->cap = p->n;
+    c->cap = want;
     c->width = width;
     return PM_OK;
 }

@@ -5,6 +5,7 @@
  */
 #include "explicit_internal.h"
 #include "fbar.h"
+#include "flow.h"
 #include "meshfree_internal.h"
 
 #include "pmech/error.h"
@@ -113,11 +114,15 @@ int pm_explicit_step(pm_sim *s, double dt)
     pm_sim_update_constraints(s);
     if (s->rho_p && (rc = pm_sim_volumes_from_positions(s)) != PM_OK)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
-    /* particles drift apart in memory as they move; a periodic sort keeps the scatters local */
-    const int sort = s->sort_interval > 0 && s->step % s->sort_interval == 0 && s->grid.n_cells < UINT32_MAX;
+    /* particles drift apart in memory as they move; a periodic sort keeps the scatters local (and
+     * puts particles a source appended among their neighbours) */
+    const int appended = pm_flow_take_changed(s);
+    const int sort = s->sort_interval > 0 && (s->step % s->sort_interval == 0 || appended) &&
+                     s->grid.n_cells < UINT32_MAX;
     if (sort)
         pm_sim_sort_particles(s);
     pm_scatter_prepare(s, sort);
+    pm_flow_before_step(s);
     switch (s->c->analysis.scheme) {
     case PM_SCHEME_USF: rc = step_usf(s, dt); break;
     case PM_SCHEME_USL: rc = step_usl_musl(s, dt, 0); break;
@@ -128,6 +133,8 @@ int pm_explicit_step(pm_sim *s, double dt)
         return rc;
     s->t += dt;
     s->step++;
+    if (s->flow && (rc = pm_flow_after_step(s)) != PM_OK)
+        return rc;
     if (s->mf) /* the particles moved with the predicted velocity in the predictor-corrector */
         return pm_mf_after_explicit(s, dt, s->c->analysis.scheme == PM_SCHEME_NEWMARK_PC ? s->nd.vel : s->nd.vel_new);
     return PM_OK;

@@ -16,14 +16,14 @@ int pm_fbar_create(pm_sim *s)
     if (!f)
         return pm_error_set(PM_ENOMEM, "out of memory for the F-bar averaging");
     s->fbar = f;
-    const size_t n = s->p.n ? s->p.n : 1;
+    const size_t n = s->p.cap ? s->p.cap : 1; /* sources append particles up to the capacity */
     f->alpha = malloc(n * sizeof(double));
     f->det = malloc(n * sizeof(double));
     f->sum = malloc(2 * (s->grid.n_cells ? s->grid.n_cells : 1) * sizeof(double));
     if (!f->alpha || !f->det || !f->sum)
         return pm_error_set(PM_ENOMEM, "out of memory for the F-bar averaging (%zu particles, %zu cells)", s->p.n,
                             s->grid.n_cells);
-    for (size_t i = 0; i < s->p.n; i++)
+    for (size_t i = 0; i < n; i++)
         f->alpha[i] = 1.0;
     return PM_OK;
 }

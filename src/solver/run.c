@@ -3,6 +3,7 @@
 #include "solver/grid_output.h"
 #include "solver/run_warnings.h"
 #include "solver/thread_governor.h"
+#include "flow.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
 #include "io/output.h"
@@ -179,6 +180,10 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     double dt_min = INFINITY, dt_max = 0, last_frame_t = 0;
     implicit_files imf;
     rc = open_implicit_files(&imf, c, o->write_output ? dir : NULL, o->verbose);
+    pm_flow_log flog = {0};
+    if (!rc && out)
+        rc = pm_flow_log_open(&flog, s, dir);
+    double particle_steps = 0; /* the count changes with sources and sinks */
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
     while (!rc && s->t < end - eps) {
@@ -192,11 +197,15 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         }
         pm_thread_gov_before(&gov, s);
         const double w0 = pm_wall_seconds();
+        const double n_before = (double)s->p.n;
         rc = c->analysis.type == PM_ANALYSIS_EXPLICIT ? pm_explicit_step(s, dt) : implicit_step(s, dt, &imf);
         const double w1 = pm_wall_seconds();
         loop_seconds += w1 - w0;
         pm_thread_gov_after(&gov, w1 - w0);
         if (rc)
+            break;
+        particle_steps += n_before;
+        if (out && (rc = pm_flow_log_step(&flog, s)) != PM_OK)
             break;
         dt_min = fmin(dt_min, dt);
         dt_max = fmax(dt_max, dt);
@@ -242,6 +251,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     }
     pm_progress_end(&pg, s->step, s->t, loop_seconds);
     close_implicit_files(&imf);
+    int rc_log = pm_flow_log_close(&flog);
+    if (!rc && rc_log)
+        rc = rc_log;
+    pm_flow_totals ft;
+    pm_flow_totals_of(s, &ft);
     pm_run_summary sum = {
         .version = PMECH_VERSION,
         .case_file = c->file,
@@ -254,8 +268,14 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .end_time = s->t,
         .wall_seconds = pm_wall_seconds() - wall0,
         .loop_seconds = loop_seconds,
-        .particle_steps_per_second = loop_seconds > 0 ? (double)s->p.n * (double)s->step / loop_seconds : 0,
+        .particle_steps_per_second = loop_seconds > 0 ? particle_steps / loop_seconds : 0,
         .particles = s->p.n,
+        .flow = s->flow != NULL,
+        .particles_max = ft.max_n,
+        .particles_released = ft.released,
+        .particles_removed = ft.removed,
+        .mass_released = ft.released_mass,
+        .mass_removed = ft.removed_mass,
         .exit_status = pm_exit_code(rc),
         .message = rc ? pm_error_message() : "",
         .threads = pm_thread_gov_main_count(&gov),

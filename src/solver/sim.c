@@ -7,6 +7,7 @@
 
 #include "boundary.h"
 #include "contact/contact.h"
+#include "flow.h"
 #include "core/seed.h"
 #include "fbar.h"
 #include "meshfree_internal.h"
@@ -138,9 +139,10 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     }
     rc = pm_seed_count(c, &s->grid, per_body, &total);
     free(per_body);
-    if (rc)
+    size_t room = 0; /* for what the sources release */
+    if (rc || (rc = pm_flow_create(c, &s->grid, max_state(c), &s->flow, &room)) != 0)
         goto fail;
-    if ((rc = pm_particles_alloc(&s->p, total, max_state(c))) != 0 ||
+    if ((rc = pm_particles_alloc_capacity(&s->p, total, total + room, max_state(c))) != 0 ||
         (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 || (meshfree && (rc = pm_mf_create(s, n_threads)) != 0) ||
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads, s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
         (rc = pm_bc_setup(c, &s->grid, &s->nd)) != 0 ||
@@ -150,17 +152,17 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         goto fail;
     /* meshfree points are not binned by cell, and RKPM's particles are its nodes: never reordered */
     s->sort_interval = meshfree ? 0 : 50;
-    s->perm = malloc((s->p.n ? s->p.n : 1) * sizeof(uint32_t));
+    s->perm = malloc((s->p.cap ? s->p.cap : 1) * sizeof(uint32_t));
     s->bucket = malloc((s->grid.n_cells + 1) * sizeof(uint32_t));
-    s->scratch = malloc((s->p.n ? s->p.n : 1) * sizeof(double));
-    s->iscratch = malloc((s->p.n ? s->p.n : 1) * sizeof(int32_t));
+    s->scratch = malloc((s->p.cap ? s->p.cap : 1) * sizeof(double));
+    s->iscratch = malloc((s->p.cap ? s->p.cap : 1) * sizeof(int32_t));
     if (!s->perm || !s->bucket || !s->scratch || !s->iscratch || !s->blocks) {
         rc = pm_error_set(PM_ENOMEM, "out of memory for the particle sort workspace");
         goto fail;
     }
     if (c->analysis.density_from_positions) {
         s->rho_node = malloc(s->grid.n_nodes * sizeof(double));
-        s->rho_p = malloc((s->p.n ? s->p.n : 1) * sizeof(double));
+        s->rho_p = malloc((s->p.cap ? s->p.cap : 1) * sizeof(double));
         s->rho_work = malloc((s->grid.n_nodes + s->grid.n_cells) * sizeof(double));
         if (!s->rho_node || !s->rho_p || !s->rho_work) {
             rc = pm_error_set(PM_ENOMEM, "out of memory for the density from positions");
@@ -173,6 +175,8 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         rc = PM_EINPUT;
         goto fail;
     }
+    if ((rc = pm_flow_start(s)) != 0)
+        goto fail;
     s->dt_next = c->analysis.dt > 0 ? c->analysis.dt : pm_sim_stable_dt(s);
     *out = s;
     return PM_OK;
@@ -200,6 +204,7 @@ void pm_sim_destroy(pm_sim *s)
     free(s->iscratch);
     free_nodal(&s->nd);
     pm_contact_destroy(s->contact);
+    pm_flow_destroy(s->flow);
     pm_grid_free(&s->grid);
     free(s);
 }
@@ -260,6 +265,8 @@ double pm_sim_stable_dt(const pm_sim *s)
         cmax = fmax(cmax, c);
         vmax = fmax(vmax, v);
     }
+    if (s->flow)
+        return pm_flow_stable_dt(s, cmax + vmax);
     return s->c->analysis.cfl * s->grid.h_min / (cmax + vmax);
 }
 

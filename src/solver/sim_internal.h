@@ -81,6 +81,7 @@ struct pm_sim {
     size_t *blocks;      /**< colour scatter: first particle of each of the 2 x threads row blocks, then n */
     int n_blocks;        /**< colour scatter: blocks in use (0: not cut yet) */
     int blocks_ok;       /**< colour scatter: no two same-colour blocks share a node at this step */
+    struct pm_flow *flow; /**< sources and sinks (solver/flow.h; NULL when the case has none) */
 };
 
 /**

@@ -6,11 +6,14 @@ usage: vtk_readback.py DIR N_PARTICLES
 Checks that particles.pvd is a valid Collection whose every listed frame exists, and that VTK's
 vtkXMLUnstructuredGridReader reads each frame with N_PARTICLES points and N_PARTICLES vertex cells
 and the point arrays displacement (3), velocity (3), stress (4: xx, yy, zz, xy), plastic_strain,
-material (Int32), body (Int32), mass and volume (and the derived fields), each with one finite tuple per
-particle. grid.vtu, when present, must read with at least one point and one cell; grid.pvd, when present,
-must list one grid frame per particle frame with the same times, each with the flags boundary (UInt8) and
-contact (Int32) and, after the first, a nodal mass whose sum is the particles' (the shape functions are a
-partition of unity: equal to 1e-9 relative, summation rounding). No temporary file may be left.
+material (Int32), body (Int32), mass, volume and id (Int32, no two particles of a frame alike) and the
+derived fields, each with one finite tuple per particle. N_PARTICLES is one count for every frame, or a
+comma-separated list of one count per frame in the order particles.pvd lists them (runs whose sources
+and sinks change the count; a frame may hold no particle). grid.vtu, when present, must read with at
+least one point and one cell; grid.pvd, when present, must list one grid frame per particle frame with
+the same times, each with the flags boundary (UInt8) and contact (Int32) and, after the first, a nodal
+mass whose sum is the particles' (the shape functions are a partition of unity: equal to 1e-9
+relative, summation rounding). No temporary file may be left.
 Exit status: 0 all good, 1 a check failed, 2 bad usage.
 """
 import math
@@ -50,6 +53,7 @@ EXPECTED = {  # name: (components, VTK data type or None for any floating type)
     "deviatoric_strain": (1, None),
     "deformation_gradient": (5, None),
     "half_size": (2, None),
+    "id": (1, vtk.VTK_INT),
 }
 STRESS_COMPONENTS = ["xx", "yy", "zz", "xy"]
 
@@ -144,6 +148,10 @@ def check_frame(path, n, t=None):
             got = [arr.GetComponentName(k) for k in range(ncomp)]
             if got != STRESS_COMPONENTS:
                 fail("%s: stress component names %s, expected %s" % (path, got, STRESS_COMPONENTS))
+        if name == "id" and arr.GetNumberOfTuples() == n:
+            ids = [int(arr.GetValue(k)) for k in range(n)]
+            if len(set(ids)) != n:
+                fail("%s: %d particles share an id with another" % (path, n - len(set(ids))))
     mass = pd.GetArray("mass")
     return array_sum(mass) if mass is not None else None
 
@@ -202,9 +210,10 @@ def main(argv):
         return 2
     d = argv[1]
     try:
-        n = int(argv[2])
+        counts = [int(v) for v in argv[2].split(",")]
     except ValueError:
-        sys.stderr.write("vtk_readback: N_PARTICLES must be an integer, got '%s'\n" % argv[2])
+        sys.stderr.write("vtk_readback: N_PARTICLES must be an integer or a comma-separated list of them, got "
+                         "'%s'\n" % argv[2])
         return 2
     pvd = os.path.join(d, "particles.pvd")
     try:
@@ -218,9 +227,13 @@ def main(argv):
     sets = root.findall("./Collection/DataSet")
     if not sets:
         fail("%s: lists no frame" % pvd)
+    if len(counts) > 1 and len(counts) != len(sets):
+        fail("%s: lists %d frames, %d counts were given" % (pvd, len(sets), len(counts)))
+        return 1
     last = -math.inf
     frames = []
-    for ds in sets:
+    for k, ds in enumerate(sets):
+        n = counts[k] if len(counts) > 1 else counts[0]
         f = ds.get("file")
         try:
             t = float(ds.get("timestep"))
@@ -248,7 +261,7 @@ def main(argv):
         fail("%s: temporary files left: %s" % (d, ", ".join(sorted(tmp))))
     if errors:
         return 1
-    print("ok: %d frames of %d particles in %s read by VTK %s" % (len(sets), n, d, vtk.vtkVersion.GetVTKVersion()))
+    print("ok: %d frames of %s particles in %s read by VTK %s" % (len(sets), argv[2], d, vtk.vtkVersion.GetVTKVersion()))
     return 0
 
 

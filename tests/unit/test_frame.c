@@ -53,6 +53,7 @@ static void make_particles(pm_particles *p, size_t n)
         p->body[i] = (int32_t)(i % 2);
         p->mass[i] = 3.0 + (double)i;
         p->vol[i] = 0.5 + (double)i;
+        p->id[i] = (int32_t)(100 + 7 * i);
     }
 }
 
@@ -78,6 +79,9 @@ static void particles_come_back_as_written(void **state)
     const double *pr = pm_frame_array(f, "pressure", NULL), *q = pm_frame_array(f, "q", NULL);
     const double *hs = pm_frame_array(f, "half_size", &nc);
     assert_int_equal(nc, PM_DIM);
+    const double *id = pm_frame_array(f, "id", &nc);
+    assert_int_equal(nc, 1);
+    assert_non_null(id);
     assert_non_null(x);
     assert_non_null(v);
     assert_non_null(s);
@@ -98,12 +102,13 @@ static void particles_come_back_as_written(void **state)
         for (int k = 0; k < PM_NF; k++)
             assert_true(F[PM_NF * i + k] == p.F[PM_NF * i + k]);
         assert_true(body[i] == p.body[i]);
+        assert_true(id[i] == p.id[i]);
         assert_true(pr[i] == pm_pf_pressure(p.stress + PM_NS * i));
         assert_true(q[i] == pm_pf_q(p.stress + PM_NS * i));
     }
     assert_null(pm_frame_array(f, "no_such_array", NULL));
     size_t names = pm_frame_n_arrays(f);
-    assert_int_equal(names, 14);
+    assert_int_equal(names, 15);
     assert_string_equal(pm_frame_array_name(f, 0, &nc), "displacement");
     assert_null(pm_frame_array_name(f, names, &nc));
     pm_frame_free(f);

@@ -556,11 +556,36 @@ static void followed_particle_survives_reordering(void **state)
         t = p->x0[4 + k], p->x0[4 + k] = p->x0[8 + k], p->x0[8 + k] = t;
         t = p->v[4 + k], p->v[4 + k] = p->v[8 + k], p->v[8 + k] = t;
     }
+    int32_t id = p->id[2];
+    p->id[2] = p->id[4];
+    p->id[4] = id;
     assert_int_equal(pm_output_probes(o, 1.0, &f->p), PM_OK);
     assert_int_equal(pm_output_probe_particle(o, 0), 4);
     assert_int_equal(pm_output_close(o, NULL), PM_OK);
     char *csv = slurp_in(f->out, "probes.csv", NULL);
     assert_string_equal(csv, "time,Q.vx,Q.vy\n1,2,-2\n");
+    free(csv);
+}
+
+/* A sink may take the followed particle: its series ends in empty cells, the other probes go on. */
+static void removed_particle_ends_its_series(void **state)
+{
+    fixture *f = *state;
+    add_probe(f->c, "Q", PM_Q_VELOCITY, -1, 0.5, 0.5); /* particle 2 */
+    add_probe(f->c, "R", PM_Q_VELOCITY, -1, 0.875, 0.875); /* particle 4 */
+    pm_output *o;
+    open_default(f, &o);
+    move_particles(&f->p);
+    assert_int_equal(pm_output_probes(o, 1.0, &f->p), PM_OK);
+    const uint8_t drop[5] = { 0, 0, 1, 0, 0 };
+    assert_int_equal(pm_particles_remove(&f->p, drop), 1);
+    assert_int_equal(pm_output_probes(o, 2.0, &f->p), PM_OK);
+    assert_int_equal(pm_output_probe_particle(o, 0), -1);
+    assert_int_equal(pm_output_probe_particle(o, 1), 3);
+    assert_int_equal(pm_output_probes(o, 3.0, &f->p), PM_OK);
+    assert_int_equal(pm_output_close(o, NULL), PM_OK);
+    char *csv = slurp_in(f->out, "probes.csv", NULL);
+    assert_string_equal(csv, "time,Q.vx,Q.vy,R.vx,R.vy\n1,2,-2,4,-4\n2,,,4,-4\n3,,,4,-4\n");
     free(csv);
 }
 
@@ -709,6 +734,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(probes_follow_nearest_particle_ties_to_lowest, setup, teardown),
         cmocka_unit_test_setup_teardown(probes_csv_header_rows_and_body_means, setup, teardown),
         cmocka_unit_test_setup_teardown(probe_interval_thins_rows, setup, teardown),
+        cmocka_unit_test_setup_teardown(removed_particle_ends_its_series, setup, teardown),
         cmocka_unit_test_setup_teardown(followed_particle_survives_reordering, setup, teardown),
         cmocka_unit_test_setup_teardown(run_json_keys_and_values, setup, teardown),
         cmocka_unit_test_setup_teardown(stale_files_of_an_earlier_run_are_removed, setup, teardown),
