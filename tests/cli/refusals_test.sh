@@ -52,5 +52,23 @@ sed 's/"directions": \["x", "y"\]/"directions": ["x", "x"]/' "$SRC/examples/cant
 expect_exit 2 "directions [\"x\", \"x\"]" "$PMECH" run dirs.json -o dirs.out --quiet
 check "names boundary_conditions[0].directions[1]" has "boundary_conditions\[0\].directions\[1\]" err.txt
 
+sed 's/"origin": \[0.0, 0.0\]/"origin": [1e300, 0.0]/' "$DISKS" > huge.json
+expect_exit 2 "a grid origin of 1e300" "$PMECH" run huge.json -o huge.out --quiet
+check "names grid.origin" has "grid.origin" err.txt
+sed 's/"origin": \[0.0, 0.0\]/"origin": [1e6, 0.0]/; s/"center": \[0.25, 0.25\]/"center": [1000000.25, 0.25]/; s/"center": \[0.75, 0.75\]/"center": [1000000.75, 0.75]/; s/"end_time": 3.5/"end_time": 0.01/; s/, "pictures": "speed"//' "$DISKS" > utm.json
+expect_exit 0 "a grid at x = 1e6 m with 0.025 m cells runs" "$PMECH" run utm.json -o utm.out --quiet
+polygon() { # file, points
+  python3 -c "import json,sys; c=json.load(open(sys.argv[1])); c['bodies'][0]['shape']={'type':'polygon','points':json.loads(sys.argv[2])}; json.dump(c,open(sys.argv[3],'w'))" "$DISKS" "$2" "$1"
+}
+polygon collinear.json '[[0.1,0.1],[0.2,0.2],[0.3,0.3]]'
+expect_exit 2 "a polygon of collinear points" "$PMECH" run collinear.json -o poly.out --quiet
+check "says they lie on one line" sh -c 'grep -q "bodies\[0\].shape.points" err.txt && grep -q "one line" err.txt'
+polygon bowtie.json '[[0.1,0.1],[0.4,0.1],[0.1,0.3],[0.4,0.4]]'
+expect_exit 2 "a self-intersecting polygon" "$PMECH" run bowtie.json -o poly.out --quiet
+check "names the crossing edges" has "the edge from point 1 to 2 meets the edge from point 3 to 0" err.txt
+polygon closed.json '[[0.1,0.1],[0.4,0.1],[0.4,0.4],[0.1,0.4],[0.1,0.1]]'
+sed -i 's/"end_time": 3.5/"end_time": 0.01/' closed.json
+expect_exit 0 "a polygon closed by repeating its first point runs" "$PMECH" run closed.json -o poly.out --quiet
+
 if [ $fail -eq 0 ]; then echo "all refusal checks passed"; fi
 exit $fail
