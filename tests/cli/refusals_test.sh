@@ -70,5 +70,21 @@ polygon closed.json '[[0.1,0.1],[0.4,0.1],[0.4,0.4],[0.1,0.4],[0.1,0.1]]'
 sed -i 's/"end_time": 3.5/"end_time": 0.01/' closed.json
 expect_exit 0 "a polygon closed by repeating its first point runs" "$PMECH" run closed.json -o poly.out --quiet
 
+# GMM and RKPM points thrown at 20 m/s out of a [0, 1] grid stop the run as MPM particles do
+for m in gmm:mls rkpm:rk_cubic; do
+  python3 - "$SRC/examples/column_collapse/case_gmm_mls.json" "${m%%:*}" "${m#*:}" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+c.update(method=sys.argv[2], shape_function=sys.argv[3], boundary_conditions=[], probes=[], output={"interval": 0.01})
+c["grid"] = {"type": "rectangle", "origin": [0, 0], "size": [1, 1], "cells": [10, 10], "element": "quad4"}
+c["bodies"] = [{"name": "block", "material": "soil", "particles_per_cell": 2, "velocity": [20, 0],
+                "shape": {"type": "rectangle", "min": [0.3, 0.3], "max": [0.6, 0.6]}}]
+c["analysis"].update(gravity=[0, 0], end_time=0.2)
+json.dump(c, open("leave_%s.json" % sys.argv[2], "w"))
+PY
+  expect_exit 1 "${m%%:*} points leaving the grid" "$PMECH" run "leave_${m%%:*}.json" -o "leave_${m%%:*}.out" --quiet
+  check "names the step and the particle" grep -Eq "step [0-9]+ .*particle [0-9]+ left the grid at \(1\.0" err.txt
+done
+
 if [ $fail -eq 0 ]; then echo "all refusal checks passed"; fi
 exit $fail
