@@ -99,8 +99,9 @@ int pm_multibody_create(const pm_case *c, size_t n_nodes, pm_multibody **out)
     mb->grad = calloc(PM_DIM * (all ? all : 1), sizeof *mb->grad);
     mb->normal = calloc(PM_DIM * (all ? all : 1), sizeof *mb->normal);
     mb->front = calloc(all ? all : 1, sizeof *mb->front);
+    mb->vol = calloc(all ? all : 1, sizeof *mb->vol);
     if (!mb->law || !mb->mu || !mb->extent || !mb->pair_force || !mb->pair_impulse || !mb->shared || !mb->list ||
-        !mb->grad || !mb->normal || !mb->front) {
+        !mb->grad || !mb->normal || !mb->front || !mb->vol) {
         pm_multibody_destroy(mb);
         return pm_error_set(PM_ENOMEM, "out of memory for %zu body fields of %zu nodes", nf, n_nodes);
     }
@@ -128,6 +129,7 @@ void pm_multibody_destroy(pm_multibody *mb)
     free(mb->grad);
     free(mb->normal);
     free(mb->front);
+    free(mb->vol);
     free(mb->surface_sum);
     free(mb);
 }
@@ -163,14 +165,18 @@ static void find_shared(pm_multibody *mb, const double *mass, double floor)
     }
 }
 
-/* Volume gradients of every field at the shared nodes (one pass over the particles). */
+/* Volumes and volume gradients of every field at the shared nodes (one pass over the particles). */
 static void volume_gradients(pm_multibody *mb, const pm_sim *s)
 {
     const size_t nn = mb->n_nodes;
     for (size_t k = 0; k < mb->n_list; k++)
         for (int f = 0; f < mb->n_fields; f++)
+        {
+            const size_t e = (size_t)f * nn + (size_t)mb->list[k];
+            mb->vol[e] = 0;
             for (int d = 0; d < PM_DIM; d++)
-                mb->grad[PM_DIM * ((size_t)f * nn + (size_t)mb->list[k]) + d] = 0;
+                mb->grad[PM_DIM * e + d] = 0;
+        }
     const pm_particles *p = &s->p;
     pm_stencil st;
     for (size_t i = 0; i < p->n; i++) {
@@ -181,35 +187,53 @@ static void volume_gradients(pm_multibody *mb, const pm_sim *s)
             const size_t e = (size_t)st.node[k];
             if (!mb->shared[e - off])
                 continue;
+            mb->vol[e] += p->vol[i] * st.N[k];
             for (int d = 0; d < PM_DIM; d++)
                 mb->grad[PM_DIM * e + d] += p->vol[i] * st.dN[k][d];
         }
     }
 }
 
-/* Outward normal of every carrying field at the shared nodes: grad V_self - grad V_others, unit
- * (sum_p V_p grad N_I(x_p) points from a body's particles to the node: out of the body). */
+/* The field other than a with the most volume at grid node n (-1: none carries mass). */
+static int fullest_other(const pm_multibody *mb, const double *mass, double floor, size_t n, int a)
+{
+    int best = -1;
+    for (int f = 0; f < mb->n_fields; f++) {
+        const size_t e = (size_t)f * mb->n_nodes + n;
+        if (f != a && mass[e] > floor && (best < 0 || mb->vol[e] > mb->vol[(size_t)best * mb->n_nodes + n]))
+            best = f;
+    }
+    return best;
+}
+
+/* Outward normal of every carrying field at the shared nodes: the volume gradient of the field
+ * that fills more of the node's support, a's own or its fullest neighbour's reversed (sum_p V_p
+ * grad N_I(x_p) points from a body's particles to the node: out of the body). Ties go to the lower
+ * field, so two fields always get opposite normals. */
 static void normals(pm_multibody *mb, const double *mass, double floor)
 {
     const size_t nn = mb->n_nodes;
     for (size_t k = 0; k < mb->n_list; k++) {
         const size_t n = (size_t)mb->list[k];
-        double total[PM_DIM] = {0};
-        for (int f = 0; f < mb->n_fields; f++)
-            if (mass[(size_t)f * nn + n] > floor)
+        for (int a = 0; a < mb->n_fields; a++) {
+            const size_t e = (size_t)a * nn + n;
+            double *nv = mb->normal + PM_DIM * e;
+            mb->front[e] = -INFINITY;
+            const int b = mass[e] > floor ? fullest_other(mb, mass, floor, n, a) : -1;
+            if (b < 0) {
                 for (int d = 0; d < PM_DIM; d++)
-                    total[d] += mb->grad[PM_DIM * ((size_t)f * nn + n) + d];
-        for (int f = 0; f < mb->n_fields; f++) {
-            const size_t e = (size_t)f * nn + n;
-            double *nv = mb->normal + PM_DIM * e, len2 = 0;
-            for (int d = 0; d < PM_DIM; d++) {
-                nv[d] = 2 * mb->grad[PM_DIM * e + d] - total[d]; /* self minus others */
-                len2 += nv[d] * nv[d];
+                    nv[d] = 0;
+                continue;
             }
+            const size_t eb = (size_t)b * nn + n;
+            const int own = mb->vol[e] > mb->vol[eb] || (mb->vol[e] == mb->vol[eb] && a < b);
+            const double *gr = mb->grad + PM_DIM * (own ? e : eb), sign = own ? 1.0 : -1.0;
+            double len2 = 0;
+            for (int d = 0; d < PM_DIM; d++)
+                len2 += gr[d] * gr[d];
             const double len = sqrt(len2);
             for (int d = 0; d < PM_DIM; d++)
-                nv[d] = mass[e] > floor && len > 0 ? nv[d] / len : 0.0;
-            mb->front[e] = -INFINITY;
+                nv[d] = len > 0 ? sign * gr[d] / len : 0.0;
         }
     }
 }

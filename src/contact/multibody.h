@@ -20,13 +20,15 @@
  *   pm_multibody_project  re-projected velocities (MUSL, USF start, predictor): the approaching
  *                         normal velocity only, as pm_contact_project_normal does for surfaces.
  *
- * The normal. The outward normal of field a at a node shared with the others is the unit vector of
- * grad V_a - grad V_others, the volume gradients (sum of V_p grad N_I(x_p) over a field's particles,
- * which points from the particles to the node: out of the body). Two
- * fields thus get exactly opposite normals, so the impulses they exchange cancel and momentum is
- * kept to round-off; each body's surface counts with its own geometry (a single body's gradient is
- * poor where it covers a node only with a corner); volumes rather than masses keep a dense body
- * from dictating the normal of a light one.
+ * The normal. At a node shared by fields a and b the outward normal of a is the unit volume gradient
+ * (sum of V_p grad N_I(x_p) over a field's particles, which points from the particles to the node:
+ * out of the body) of whichever of the two fills more of the node's support (the larger nodal
+ * volume sum V_p N_I), a's own or b's reversed. The two fields thus get exactly opposite normals, so
+ * the impulses they exchange cancel and momentum is kept to round-off. Taking the fuller body's
+ * gradient rather than the difference of both matters at a body's corners: where a block's corner
+ * rests on a flat slope, the block covers the node with one cell and its gradient leans out along
+ * the slope, which would make a frictionless block plough; the slope's gradient there is the true
+ * normal. Volumes rather than masses keep a dense body from dictating the normal of a light one.
  *
  * The contact test. Approaching (v_a - v_cm) . n_a > 0 alone fires as soon as two bodies share a
  * node, up to a cell before they touch. The extent check also asks that the particles' domains
@@ -66,6 +68,7 @@ typedef struct pm_multibody {
     uint8_t *shared;           /**< per grid node: 1 when two fields or more carry mass there */
     int32_t *list;             /**< the shared nodes of this step */
     size_t n_list;
+    double *vol;               /**< nodal volume sum V_p N_I, per field node (shared nodes only) */
     double *grad;              /**< volume gradient, PM_DIM per field node (shared nodes only) */
     double *normal;            /**< outward unit normal, PM_DIM per field node (0: none) */
     double *front;             /**< reach of the field's particles along its normal, per field node */
