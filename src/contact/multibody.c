@@ -209,8 +209,10 @@ static int fullest_other(const pm_multibody *mb, const double *mass, double floo
 /* Outward normal of every carrying field at the shared nodes: the volume gradient of the field
  * that fills more of the node's support, a's own or its fullest neighbour's reversed (sum_p V_p
  * grad N_I(x_p) points from a body's particles to the node: out of the body). Ties go to the lower
- * field, so two fields always get opposite normals. */
-static void normals(pm_multibody *mb, const double *mass, double floor)
+ * field, so two fields always get opposite normals. A component a condition prescribes at the node
+ * is left out: there the gradient only sees the grid's edge (a body against a roller side leans
+ * out of the side), and contact cannot act along it anyway. */
+static void normals(pm_multibody *mb, const double *mass, const uint8_t *fixed, double floor)
 {
     const size_t nn = mb->n_nodes;
     for (size_t k = 0; k < mb->n_list; k++) {
@@ -228,12 +230,14 @@ static void normals(pm_multibody *mb, const double *mass, double floor)
             const size_t eb = (size_t)b * nn + n;
             const int own = mb->vol[e] > mb->vol[eb] || (mb->vol[e] == mb->vol[eb] && a < b);
             const double *gr = mb->grad + PM_DIM * (own ? e : eb), sign = own ? 1.0 : -1.0;
-            double len2 = 0;
-            for (int d = 0; d < PM_DIM; d++)
-                len2 += gr[d] * gr[d];
+            double len2 = 0, g[PM_DIM];
+            for (int d = 0; d < PM_DIM; d++) {
+                g[d] = fixed[n] & (1u << d) ? 0.0 : gr[d];
+                len2 += g[d] * g[d];
+            }
             const double len = sqrt(len2);
             for (int d = 0; d < PM_DIM; d++)
-                nv[d] = len > 0 ? sign * gr[d] / len : 0.0;
+                nv[d] = len > 0 ? sign * g[d] / len : 0.0;
         }
     }
 }
@@ -277,7 +281,7 @@ void pm_multibody_prepare(pm_sim *s)
     if (!mb->n_list)
         return;
     volume_gradients(mb, s);
-    normals(mb, s->nd.mass, floor);
+    normals(mb, s->nd.mass, s->nd.fixed, floor);
     if (mb->any_extent)
         fronts(mb, s);
 }
