@@ -56,19 +56,21 @@ static inline void constrain(const pm_nodal *nd, size_t e, double v[PM_DIM])
 }
 
 /*
- * Field a's velocity va at shared node n against the centre of mass vcm: no_slip takes vcm; the
- * other laws act on va - vcm along a's normal when the fields touch (full: friction too; else the
- * approaching normal part only). Returns the partner field, or -1 when nothing acted.
+ * Field a's velocity va at shared node n against the centre of mass vcm: no_slip takes vcm (*stuck
+ * set); the other laws act on va - vcm along a's normal when the fields touch (full: friction too;
+ * else the approaching normal part only). Returns the partner field, or -1 when nothing acted.
  */
 static int act(const pm_multibody *mb, const double *mass, double floor, size_t n, int a, const double vcm[PM_DIM],
-               int full, double va[PM_DIM])
+               int full, double va[PM_DIM], int *stuck)
 {
+    *stuck = 0;
     const int b = heaviest_other(mb, mass, floor, n, a);
     if (b < 0)
         return -1;
     const size_t ab = (size_t)a * (size_t)mb->n_fields + (size_t)b, e = (size_t)a * mb->n_nodes + n;
     if (mb->law[ab] == PM_PAIR_NO_SLIP) {
         memcpy(va, vcm, PM_DIM * sizeof(double));
+        *stuck = 1;
         return b;
     }
     const double *nrm = mb->normal + PM_DIM * e;
@@ -85,7 +87,9 @@ static int act(const pm_multibody *mb, const double *mass, double floor, size_t 
     return b;
 }
 
-/* The pair laws at every shared node, on velocities v (full: with friction and forces). */
+/* The pair laws at every shared node, on velocities v (full: with friction and forces). A stuck
+ * field's acceleration is that of the centre of mass, (vcm - vcm0) / dt_acc, as in a single field,
+ * so that a no_slip pair moves its particles exactly as one field would. */
 static void pair_laws(pm_sim *s, double *v, int full, double dt, double dt_acc)
 {
     pm_multibody *mb = s->mb;
@@ -94,20 +98,24 @@ static void pair_laws(pm_sim *s, double *v, int full, double dt, double dt_acc)
     const size_t nn = mb->n_nodes;
     for (size_t k = 0; k < mb->n_list; k++) {
         const size_t n = (size_t)mb->list[k];
-        double vcm[PM_DIM];
+        double vcm[PM_DIM], vcm0[PM_DIM];
         centre_of_mass(mb, nd->mass, floor, v, n, vcm);
+        if (full)
+            centre_of_mass(mb, nd->mass, floor, nd->vel, n, vcm0);
         for (int a = 0; a < mb->n_fields; a++) {
             const size_t e = (size_t)a * nn + n;
             if (!(nd->mass[e] > floor))
                 continue;
             double *va = v + PM_DIM * e, before[PM_DIM];
             memcpy(before, va, sizeof before);
-            const int b = act(mb, nd->mass, floor, n, a, vcm, full, va);
+            int stuck;
+            const int b = act(mb, nd->mass, floor, n, a, vcm, full, va, &stuck);
             constrain(nd, e, va);
             if (!full)
                 continue;
+            const double *v0 = stuck ? vcm0 : nd->vel + PM_DIM * e;
             for (int d = 0; d < PM_DIM; d++)
-                nd->acc[PM_DIM * e + d] = (va[d] - nd->vel[PM_DIM * e + d]) / dt_acc;
+                nd->acc[PM_DIM * e + d] = (va[d] - v0[d]) / dt_acc;
             if (b < 0)
                 continue;
             double *f = mb->pair_force + PM_DIM * ((size_t)a * (size_t)mb->n_fields + (size_t)b);
