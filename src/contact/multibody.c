@@ -232,7 +232,7 @@ static void normals(pm_multibody *mb, const double *mass, const uint8_t *fixed, 
             const double *gr = mb->grad + PM_DIM * (own ? e : eb), sign = own ? 1.0 : -1.0;
             double len2 = 0, g[PM_DIM];
             for (int d = 0; d < PM_DIM; d++) {
-                g[d] = fixed[n] & (1u << d) ? 0.0 : gr[d];
+                g[d] = (fixed[n] & (1u << d)) ? 0.0 : gr[d];
                 len2 += g[d] * g[d];
             }
             const double len = sqrt(len2);

@@ -113,17 +113,6 @@ static inline int stencil_at(const pm_sim *s, size_t i, pm_stencil *st)
     return s->approx->ops->eval(s->approx, &s->p, i, st);
 }
 
-int pm_xp_stencil(const pm_sim *s, size_t i, pm_stencil *st)
-{
-    const int rc = s->approx->ops->eval(s->approx, &s->p, i, st);
-    if (s->mb) {
-        const int32_t off = s->mb->offset_of_body[s->p.body[i]];
-        for (int k = 0; k < st->n; k++)
-            st->node[k] += off;
-    }
-    return rc;
-}
-
 /*
  * Particle i's stress update over dt from its velocity gradient L (xx, xy, yx, yy) and, in
  * axisymmetric runs, its radial velocity vr; its wave speed into *wave unless the step is fixed.
