@@ -7,6 +7,7 @@
 #include "explicit_internal.h"
 #include "meshfree_internal.h"
 #include "contact/contact.h"
+#include "contact/multibody.h"
 
 #include <math.h>
 
@@ -17,8 +18,7 @@ static void constrain(const pm_nodal *nd, int32_t n, double v[PM_DIM])
             v[d] = nd->vfix[PM_DIM * n + d];
 }
 
-/* Smallest nodal mass treated as carrying material: guards divisions by round-off masses. */
-static double mass_floor(const pm_sim *s)
+double pm_xp_mass_floor(const pm_sim *s)
 {
     return s->p.n ? 1e-12 * s->p.mass[0] : 0.0;
 }
@@ -32,8 +32,8 @@ static inline double damped(double f, double v, double alpha)
 void pm_xp_grid_update(pm_sim *s, double dt)
 {
     pm_nodal *nd = &s->nd;
-    const size_t nn = s->grid.n_nodes;
-    const double alpha = s->c->analysis.damping, mfloor = mass_floor(s);
+    const size_t nn = nd->n_all;
+    const double alpha = s->c->analysis.damping, mfloor = pm_xp_mass_floor(s);
     const int meshfree = s->mf != NULL;
 #pragma omp parallel for schedule(static) num_threads(nd->n_threads)
     for (size_t n = 0; n < nn; n++) {
@@ -63,7 +63,10 @@ void pm_xp_grid_update(pm_sim *s, double dt)
         for (int d = 0; d < PM_DIM; d++)
             a[d] = (vn[d] - v[d]) / dt;
     }
-    pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, dt);
+    if (s->mb)
+        pm_multibody_apply(s, nd->vel_new, dt, dt);
+    else
+        pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, dt);
     if (s->mf && s->mf->transform)
         pm_mf_impose_update(s, dt);
 }
@@ -71,8 +74,8 @@ void pm_xp_grid_update(pm_sim *s, double dt)
 void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out)
 {
     pm_nodal *nd = &s->nd;
-    const size_t nn = s->grid.n_nodes;
-    const double mfloor = mass_floor(s);
+    const size_t nn = nd->n_all;
+    const double mfloor = pm_xp_mass_floor(s);
 #pragma omp parallel for schedule(static) num_threads(nd->n_threads)
     for (size_t n = 0; n < nn; n++) {
         double *v = out + PM_DIM * n;
@@ -82,7 +85,10 @@ void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out)
         if (m > mfloor)
             constrain(nd, (int32_t)n, v);
     }
-    pm_contact_project_normal(s->contact, pm_contact_field_of(nd, out, mfloor));
+    if (s->mb)
+        pm_multibody_project(s, out);
+    else
+        pm_contact_project_normal(s->contact, pm_contact_field_of(nd, out, mfloor));
     if (s->mf && s->mf->transform)
         pm_mf_impose(s, out, 0);
 }
@@ -90,8 +96,8 @@ void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out)
 void pm_xp_grid_newmark(pm_sim *s, double dt, double gamma)
 {
     pm_nodal *nd = &s->nd;
-    const size_t nn = s->grid.n_nodes;
-    const double alpha = s->c->analysis.damping, mfloor = mass_floor(s);
+    const size_t nn = nd->n_all;
+    const double alpha = s->c->analysis.damping, mfloor = pm_xp_mass_floor(s);
 #pragma omp parallel for schedule(static) num_threads(nd->n_threads)
     for (size_t n = 0; n < nn; n++) {
         const double m = nd->mass[n];
@@ -107,7 +113,10 @@ void pm_xp_grid_newmark(pm_sim *s, double dt, double gamma)
             vn[d] = v[d] + gamma * dt * a[d];
         }
     }
-    pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, gamma * dt);
+    if (s->mb)
+        pm_multibody_apply(s, nd->vel_new, dt, gamma * dt);
+    else
+        pm_contact_apply(s->contact, pm_contact_field_of(nd, nd->vel_new, mfloor), dt, gamma * dt);
     if (s->mf && s->mf->transform)
         pm_mf_impose(s, nd->acc, 1);
 }

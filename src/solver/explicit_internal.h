@@ -10,6 +10,13 @@
 #include "solver/sim_internal.h"
 #include "scatter.h"
 
+/* Shape functions of particle i through the approximation's interface; with body fields its nodes
+ * are those of the particle's own field (contact/multibody.h). */
+int pm_xp_stencil(const pm_sim *s, size_t i, pm_stencil *st);
+
+/* Smallest nodal mass treated as carrying material: guards divisions by round-off masses. */
+double pm_xp_mass_floor(const pm_sim *s);
+
 /* Mass, momentum (of v + mom_shift * a) and, with with_force, internal force plus weight (gravity g)
  * of every particle to the grid. Returns the first particle outside the grid, or LONG_MAX. */
 long pm_xp_p2g(pm_sim *s, double mom_shift, int with_force, const double g[PM_DIM]);
