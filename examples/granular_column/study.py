@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""Run-out study of planar cohesionless column collapses against the laws of Lube et al. (2005).
+
+    python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--flip 1.0] [--jobs 2] [--keep]
+
+For every aspect ratio a = H / L0 and mesh (cells per column width L0 = 1 m) it writes a case from
+case.json (the column, the grid and the end time scaled with a), runs it with one thread, and
+measures the final deposit from the last frame: the front (the particles' x sorted, up to the first
+gap wider than 2 h), the farthest particle, the height at the wall (largest y within h of it), the
+largest volume ratio V / V0 and the front's advance over the last 10 % of the run. Prints one
+markdown row per run and writes study.csv.
+
+Laws (planar collapses, experiments with sand, sugar, rice and glass beads): (L_f - L0) / L0 =
+1.2 a for a < 2.3 and 1.9 a^(2/3) above; H_f / L0 = a for a < 1.15 and a^(2/5) above.
+"""
+import argparse
+import concurrent.futures
+import copy
+import json
+import math
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+
+def law_runout(a):
+    return 1.2 * a if a < 2.3 else 1.9 * a ** (2.0 / 3.0)
+
+
+def law_height(a):
+    return a if a < 1.15 else a ** 0.4
+
+
+def arrays(vtu):
+    """Points and the named point arrays of a frame pmech wrote (appended raw binary)."""
+    data = vtu.read_bytes()
+    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
+    raw = tail[tail.index(b"_") + 1:]
+    n = int(re.search(rb'NumberOfPoints="(\d+)"', head).group(1))
+    out = {}
+    for m in re.finditer(rb"<DataArray[^>]*>", head):
+        tag = m.group(0)
+        name, off = re.search(rb'Name="([^"]+)"', tag), re.search(rb'offset="(\d+)"', tag)
+        if not name or not off or b'type="Float64"' not in tag:
+            continue
+        o = int(off.group(1))
+        size = struct.unpack_from("<Q", raw, o)[0]
+        out[name.group(1).decode()] = struct.unpack_from("<%dd" % (size // 8), raw, o + 8)
+    return n, out
+
+
+def frames(out):
+    found = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', (out / "particles.pvd").read_text())
+    return [(float(t), out / f) for t, f in found]
+
+
+def deposit(vtu, h):
+    n, a = arrays(vtu)
+    pts = a["Points"]
+    xs = sorted(pts[3 * i] for i in range(n))
+    front = xs[0]
+    for x in xs[1:]:
+        if x - front > 2 * h:
+            break
+        front = x
+    height = max(pts[3 * i + 1] for i in range(n) if pts[3 * i] < h)
+    return front, xs[-1], height, a
+
+
+def make_case(base, a, cells, flip):
+    c = copy.deepcopy(base)
+    L0, h = 1.0, 1.0 / cells
+    H = a * L0
+    reach = law_runout(a) + 1.0
+    width = max(1.6 * reach + 0.5, 3.0)
+    height = H + 0.5
+    c["title"] = "granular column a = %g, h = L0/%d" % (a, cells)
+    c["grid"]["cells"] = [math.ceil(width / h), math.ceil(height / h)]
+    c["grid"]["size"] = [c["grid"]["cells"][0] * h, c["grid"]["cells"][1] * h]
+    body = c["bodies"][0]
+    body["shape"]["max"] = [L0, H]
+    body["surface_y"] = H
+    # free fall of the column's top plus the spreading of the deposit, with a margin to come to rest
+    c["analysis"]["end_time"] = round(3.0 * math.sqrt(H / 9.81) + 1.5 * math.sqrt(reach / 9.81) + 0.5, 3)
+    if flip is not None:
+        c["analysis"]["flip"] = flip
+    c["output"] = {"directory": "out", "interval": round(c["analysis"]["end_time"] / 20, 4)}
+    c.pop("probes", None)
+    return c
+
+
+def run_one(pmech, work, a, cells, flip, keep):
+    name = "a%g_h%d" % (a, cells)
+    d = work / name
+    d.mkdir(parents=True, exist_ok=True)
+    base = json.loads((HERE / "case.json").read_text())
+    case = make_case(base, a, cells, flip)
+    (d / "case.json").write_text(json.dumps(case, indent=1))
+    env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
+    t0 = time.time()
+    proc = subprocess.run([pmech, "run", "case.json", "--threads", "1", "--quiet"], cwd=d, env=env,
+                          capture_output=True, text=True)
+    secs = time.time() - t0
+    h = 1.0 / cells
+    fr = frames(d / "out")
+    t_end, last = fr[-1]
+    front, xmax, hw, arr = deposit(last, h)
+    t_before, before = min(fr, key=lambda f: abs(f[0] - 0.9 * t_end))
+    front_before = deposit(before, h)[0]
+    vol, v0 = arr.get("volume"), (h * h) / 4
+    jmax = max(vol) / v0 if vol else float("nan")
+    row = dict(a=a, cells=cells, t_end=t_end, end_time=case["analysis"]["end_time"], ok=proc.returncode == 0,
+               runout=front - 1.0, law_runout=law_runout(a), height=hw, law_height=law_height(a),
+               stray=xmax / front, creep=front - front_before, jmax=jmax, seconds=secs,
+               message=proc.stderr.strip().splitlines()[-1] if proc.returncode else "")
+    if not keep:
+        shutil.rmtree(d / "out", ignore_errors=True)
+    return row
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("pmech")
+    ap.add_argument("--aspect", default="0.5,1,2,4,8")
+    ap.add_argument("--cells", default="10,20")
+    ap.add_argument("--flip", type=float, default=None)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--work", default="study.out")
+    ap.add_argument("--keep", action="store_true")
+    o = ap.parse_args()
+    pmech = str(Path(o.pmech).resolve())
+    work = Path(o.work).resolve()
+    runs = [(float(a), int(n)) for n in o.cells.split(",") for a in o.aspect.split(",")]
+    rows = []
+    with concurrent.futures.ThreadPoolExecutor(o.jobs) as ex:
+        futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep) for a, n in runs]
+        for f in concurrent.futures.as_completed(futs):
+            r = f.result()
+            rows.append(r)
+            print("a = %g, L0/h = %d: run-out %.3f (law %.3f, %+.1f %%), height %.3f (law %.3f, %+.1f %%), "
+                  "farthest/front %.3f, creep %.3f, J max %.1f, %s, %.0f s" %
+                  (r["a"], r["cells"], r["runout"], r["law_runout"], 100 * (r["runout"] / r["law_runout"] - 1),
+                   r["height"], r["law_height"], 100 * (r["height"] / r["law_height"] - 1), r["stray"], r["creep"],
+                   r["jmax"], "finished" if r["ok"] else "STOPPED: " + r["message"], r["seconds"]), flush=True)
+    rows.sort(key=lambda r: (r["a"], r["cells"]))
+    keys = list(rows[0].keys())
+    with open(work / "study.csv", "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write(",".join(str(r[k]) for k in keys) + "\n")
+    print("| a | L0/h | (L_f - L0)/L0 | law | error | H_f/L0 | law | error | farthest/front | finished |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print("| %g | %d | %.2f | %.2f | %+.0f %% | %.2f | %.2f | %+.0f %% | %.2f | %s |" %
+              (r["a"], r["cells"], r["runout"], r["law_runout"], 100 * (r["runout"] / r["law_runout"] - 1),
+               r["height"], r["law_height"], 100 * (r["height"] / r["law_height"] - 1), r["stray"],
+               "yes" if r["ok"] else "no"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
