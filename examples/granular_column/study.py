@@ -119,7 +119,7 @@ def run_one(pmech, work, a, cells, flip, keep):
     row = dict(a=a, cells=cells, t_end=t_end, end_time=case["analysis"]["end_time"], ok=proc.returncode == 0,
                runout=front - 1.0, law_runout=law_runout(a), height=hw, law_height=law_height(a),
                stray=xmax / front, creep=front - front_before, jmax=jmax, seconds=secs,
-               message=proc.stderr.strip().splitlines()[-1] if proc.returncode else "")
+               message=(proc.stderr.strip().splitlines() or ["exit %d" % proc.returncode])[-1] if proc.returncode else "")
     if not keep:
         shutil.rmtree(d / "out", ignore_errors=True)
     return row
