@@ -163,6 +163,8 @@ typedef struct pm_newton_opts {
     int max_iterations;           /**< default 25 */
     int line_search;              /**< default 1 */
     int max_step_cuts;            /**< halvings of dt or the load increment before giving up (default 8) */
+    double absolute_tolerance;    /**< residual norm that counts as converged whatever its scale; 0 = tolerance
+                                       x the case's characteristic force (pm_implicit_characteristic_force) */
 } pm_newton_opts;
 
 /** analysis.strength_reduction: search for the factor of safety (pmech/strength_reduction.h). */

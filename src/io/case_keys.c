@@ -14,7 +14,7 @@ static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", 
                                             "density_update", "strength_reduction", "fbar", "max_steps", NULL};
 static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "displacement_ratio", NULL};
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
-                                          "max_step_cuts", NULL};
+                                          "max_step_cuts", "absolute_tolerance", NULL};
 static const char *const rect_keys[] = {"type", "origin", "size", "cells", "element", NULL};
 static const char *const gmsh_keys[] = {"type", "file", NULL};
 static const char *const body_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",

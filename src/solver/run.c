@@ -13,6 +13,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,6 +125,11 @@ static int write_energy(pm_output *out, const pm_sim *s)
     double ke, se, ge;
     pm_sim_energy(s, &ke, &se, &ge);
     return pm_output_energy(out, s->t, ke, se, ge);
+}
+
+static const char *signal_name(int sig)
+{
+    return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
 }
 
 static double max_displacement(const pm_particles *p)
@@ -242,6 +248,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
                 break;
         }
         pm_progress_update(&pg, s->step, s->t, loop_seconds);
+        if (o->interrupt && *o->interrupt) {
+            rc = pm_error_set(PM_EINTR, "interrupted by %s after step %ld (t = %.6g s)", signal_name(*o->interrupt),
+                              s->step, s->t);
+            break;
+        }
     }
     if (!rc && out && last_frame_t < s->t) {
         rc = write_frame(out, s, dir, &frame);
@@ -295,7 +306,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .particles_removed = ft.removed,
         .mass_released = ft.released_mass,
         .mass_removed = ft.removed_mass,
-        .exit_status = pm_exit_code(rc),
+        .exit_status = rc == PM_EINTR ? 128 + (int)*o->interrupt : pm_exit_code(rc),
+        .interrupted = rc == PM_EINTR ? signal_name(*o->interrupt) : NULL,
         .message = rc ? pm_error_message() : "",
         .threads = pm_thread_gov_main_count(&gov),
         .implicit = c->analysis.type != PM_ANALYSIS_EXPLICIT,
