@@ -198,6 +198,7 @@ typedef struct pm_case {
         double gravity[2];
         double gravity_ramp_time;
         double damping;
+        double pic;               /**< MUSL: PIC share of the particle velocity update, 1 - the key flip (0: FLIP) */
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */

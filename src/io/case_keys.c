@@ -10,7 +10,7 @@ static const char *const top_keys[] = {"title", "dimension", "formulation", "met
                                        "boundary_conditions", "output", "probes", "sources", "sinks", "contact_pairs",
                                        "obstacles", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
-                                            "gravity_ramp_time", "damping", "newton", "load_steps",
+                                            "gravity_ramp_time", "damping", "flip", "newton", "load_steps",
                                             "density_update", "strength_reduction", "fbar", "max_steps", NULL};
 static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "displacement_ratio", NULL};
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
