@@ -173,6 +173,7 @@ typedef struct pm_case {
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
         pm_fbar_mode fbar;        /**< volumetric averaging against locking (MPM only) */
         pm_srf_opts strength_reduction;
+        double max_steps;         /**< a run whose estimated step count exceeds this is refused (default 1e8) */
     } analysis;
     struct {
         pm_grid_type type;

@@ -99,6 +99,7 @@ int pm_case_parse_shape(pm_case *c, const char *path, json_t *sh, pm_shape *s)
             s->points[PM_DIM * k] = json_number_value(x);
             s->points[PM_DIM * k + 1] = json_number_value(y);
         }
+        pm_check(pm_case_check_polygon(c, pp, s));
         break;
     }
     default:

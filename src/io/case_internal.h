@@ -103,6 +103,10 @@ int pm_case_parse_sinks(pm_case *c, json_t *ss);
 /** A shape object (rectangle, polygon, circle, gmsh_group) at key path @p path. */
 int pm_case_parse_shape(pm_case *c, const char *path, json_t *sh, pm_shape *s);
 
+/** Refuse a polygon that encloses no area or whose outline crosses itself (case_polygon.c); @p path
+ *  names its points in messages. */
+int pm_case_check_polygon(const pm_case *c, const char *path, const pm_shape *s);
+
 /** The bounding box of a shape; NaN for a gmsh group, whose extent only the mesh knows. */
 void pm_case_shape_box(const pm_shape *s, double lo[PM_DIM], double hi[PM_DIM]);
 

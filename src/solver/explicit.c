@@ -37,7 +37,7 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
     long bad = pm_xp_p2g(s, 0.0, 1, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
-    pm_xp_grid_update(s, dt, 1);
+    pm_xp_grid_update(s, dt);
     pm_nodal *nd = &s->nd;
     if (musl) {
         pm_xp_musl_project(s, dt);
@@ -67,7 +67,7 @@ static int step_usf(pm_sim *s, double dt)
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
-    pm_xp_grid_update(s, dt, 1);
+    pm_xp_grid_update(s, dt);
     pm_xp_g2p_usf(s, dt);
     return PM_OK;
 }

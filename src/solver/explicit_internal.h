@@ -48,8 +48,11 @@ void pm_xp_g2p_newmark(pm_sim *s, double dt, double gamma);
 long pm_xp_stress_only(pm_sim *s, const double *nodal_v, double dt);
 
 /* Nodal velocities from momentum, end-of-step velocities from forces with local damping, constraints
- * (also on the start velocity when constrain_start) and friction; acc = (v_new - v) / dt. */
-void pm_xp_grid_update(pm_sim *s, double dt, int constrain_start);
+ * on the end-of-step velocity (meshfree: on the start velocity too) and friction; acc = (v_new - v) / dt.
+ * In MPM a prescribed component's acceleration is therefore the change from the projected to the
+ * prescribed velocity: the particles' velocity update (FLIP) receives the reaction's impulse, as the
+ * grid does. */
+void pm_xp_grid_update(pm_sim *s, double dt);
 
 /* Nodal velocities from momentum into out, with constraints and the contact normal. */
 void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out);

@@ -1,6 +1,7 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "sim_internal.h"
 #include "solver/grid_output.h"
+#include "solver/run_checks.h"
 #include "solver/run_warnings.h"
 #include "solver/thread_governor.h"
 #include "flow.h"
@@ -143,6 +144,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
     pm_sim *s = NULL;
     pm_check(pm_sim_create(c, &s, threads));
+    int rc = pm_run_check_start(s);
+    if (rc) {
+        pm_sim_destroy(s);
+        return rc;
+    }
     if (o->threads <= 0 && !getenv("OMP_NUM_THREADS") && s->p.n < PM_PARTICLES_PER_THREAD_MIN) {
         /* A step of a few thousand particles takes tens of microseconds: the barriers between its
          * passes would cost more than a second thread gains, and far more when another process holds
@@ -159,7 +165,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_run_warnings warn;
     pm_run_warnings_begin(&warn, c, o->quiet);
     pm_output *out = NULL;
-    int rc = PM_OK, frame = 0;
+    int frame = 0;
     const char *dir = o->out_dir ? o->out_dir : c->output.directory;
     if (o->write_output) {
         rc = pm_output_open(&out, dir, c, pm_sim_frame_grid(s), &s->p);
@@ -226,8 +232,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
                 rc = write_frame(out, s, dir, &frame);
                 last_frame_t = s->t;
-                while (next_frame <= s->t + eps)
-                    next_frame += interval;
+                /* computed, not stepped: adding an interval below the spacing of doubles near t would
+                 * leave next_frame where it is for ever */
+                next_frame = fmax(next_frame, interval * (floor((s->t + eps) / interval) + 1));
+                if (next_frame <= s->t + eps)
+                    next_frame = s->t + interval > s->t ? s->t + interval : nextafter(s->t, INFINITY);
             }
             if (rc)
                 break;
