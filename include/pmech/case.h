@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 #include "pmech/material.h"
+#include "pmech/timefn.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -120,6 +121,33 @@ typedef struct pm_case_bc {
     double until;                 /**< velocity: prescribed until this time, then held (INFINITY or <= 0: always) */
 } pm_case_bc;
 
+/** obstacles[].type */
+typedef enum pm_obstacle_type {
+    PM_OBSTACLE_POLYLINE = 0,     /**< an open chain of segments; the material on one side of it */
+    PM_OBSTACLE_POLYGON = 1,      /**< a closed polygon; the material outside it */
+    PM_OBSTACLE_CIRCLE = 2        /**< a disk; the material outside it */
+} pm_obstacle_type;
+
+/** obstacles[].law */
+typedef enum pm_obstacle_law {
+    PM_OBSTACLE_NODAL = 0,        /**< Bardenhagen's nodal Coulomb law (velocity projection) */
+    PM_OBSTACLE_PENALTY = 1       /**< penalty-regularised Coulomb law (force from the penetration) */
+} pm_obstacle_law;
+
+/** obstacles[]: a rigid body placed independently of the grid, fixed or moving. */
+typedef struct pm_case_obstacle {
+    char name[PM_NAME_MAX];
+    pm_obstacle_type type;
+    size_t n_points;              /**< polyline (>= 2), polygon (>= 3): points at t = 0 */
+    double *points;               /**< 2 per point */
+    double center[2], radius;     /**< circle at t = 0 */
+    int material_right;           /**< polyline: the material lies right of its direction (default left) */
+    pm_timefn velocity[2];        /**< rigid translation velocity per component */
+    pm_obstacle_law law;
+    double friction;              /**< Coulomb coefficient >= 0; INFINITY for "no_slip" */
+    double penalty_factor;        /**< penalty law: multiplies the default stiffness (default 1) */
+} pm_case_obstacle;
+
 /** probes[] */
 typedef struct pm_case_probe {
     char name[PM_NAME_MAX];
@@ -204,6 +232,8 @@ typedef struct pm_case {
     pm_case_sink *sinks;
     size_t n_contact_pairs;
     pm_case_contact_pair *contact_pairs; /**< body-body contact laws; none: one field, bodies stick */
+    size_t n_obstacles;
+    pm_case_obstacle *obstacles;
     void *doc;                    /**< the JSON document the case was read from (private; pm_case_set edits it) */
 } pm_case;
 

@@ -8,7 +8,7 @@
 static const char *const top_keys[] = {"title", "dimension", "formulation", "method", "shape_function", "lme_gamma",
                                        "support_radius", "max_condition", "analysis", "grid", "materials", "bodies",
                                        "boundary_conditions", "output", "probes", "sources", "sinks", "contact_pairs",
-                                       NULL};
+                                       "obstacles", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
                                             "gravity_ramp_time", "damping", "newton", "load_steps",
                                             "density_update", "strength_reduction", "fbar", "max_steps", NULL};
@@ -39,6 +39,9 @@ static const char *const sink_outlet[] = {"type", "name", "boundary", NULL},
                          *const sink_outside[] = {"type", "name", NULL};
 static const char *const sink_line[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const pair_keys[] = {"bodies", "law", "friction", "separation", NULL};
+static const char *const obstacle_keys[] = {"name", "type", "points", "center", "radius", "material_side", "law",
+                                            "friction", "penalty_factor", "velocity", NULL};
+static const char *const timefn_keys[] = {"value", "ramp_time", "table", NULL};
 
 static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_TOP] = {"", NULL, top_keys},
@@ -65,6 +68,8 @@ static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_SINK_OUTSIDE_GRID] = {"sinks[]", "outside_grid", sink_outside},
     [PM_KEYS_SINK_LINE] = {"sinks[].boundary", NULL, sink_line},
     [PM_KEYS_CONTACT_PAIR] = {"contact_pairs[]", NULL, pair_keys},
+    [PM_KEYS_OBSTACLE] = {"obstacles[]", NULL, obstacle_keys},
+    [PM_KEYS_TIMEFN] = {"obstacles[].velocity[]", NULL, timefn_keys},
 };
 
 const char *const *pm_case_keys(pm_case_keyset_id id) { return table[id].keys; }

@@ -7,6 +7,7 @@
 #include "fbar.h"
 #include "flow.h"
 #include "meshfree_internal.h"
+#include "contact/contact.h"
 
 #include "pmech/error.h"
 
@@ -112,6 +113,7 @@ int pm_explicit_step(pm_sim *s, double dt)
     if (rc)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     pm_sim_update_constraints(s);
+    pm_contact_gaps(s->contact, s->approx, &s->p); /* from where the material is at the step's start */
     if (s->rho_p && (rc = pm_sim_volumes_from_positions(s)) != PM_OK)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     /* particles drift apart in memory as they move; a periodic sort keeps the scatters local (and
