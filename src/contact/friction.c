@@ -93,9 +93,12 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
         dv[d] = after[d] - before[d];
     const double dvn = dot(dv, cn->normal);
     sf->f.normal -= m * dvn / dt;
+    sf->impulse.normal -= m * dvn;
     for (int d = 0; d < PM_DIM; d++) {
         sf->f.force[d] += m * dv[d] / dt;
         sf->f.tangent[d] += m * (dv[d] - dvn * cn->normal[d]) / dt;
+        sf->impulse.force[d] += m * dv[d];
+        sf->impulse.tangent[d] += m * (dv[d] - dvn * cn->normal[d]);
     }
 }
 

@@ -1,0 +1,85 @@
+/* forces.csv (forces_log.h): one row per output interval / 20, written whole and flushed. */
+#include "solver/forces_log.h"
+
+#include "contact/contact.h"
+#include "pmech/error.h"
+
+#include <errno.h>
+#include <math.h>
+#include <string.h>
+
+/* The surfaces reported: friction conditions and obstacles (not the walls a fixed side implies). */
+static int reported(const pm_contact_surface *sf)
+{
+    return !sf->guard;
+}
+
+static void surface_name(const pm_sim *s, const pm_contact_surface *sf, char *out, size_t cap)
+{
+    if (sf->obstacle >= 0)
+        snprintf(out, cap, "%s", s->c->obstacles[sf->obstacle].name);
+    else
+        snprintf(out, cap, "boundary_conditions%ld", sf->bc);
+}
+
+int pm_forces_log_open(pm_forces_log *log, const pm_sim *s, const char *dir)
+{
+    memset(log, 0, sizeof *log);
+    const pm_contact *ct = s->contact;
+    size_t n = 0;
+    for (size_t k = 0; ct && k < ct->n_surfaces; k++)
+        n += reported(&ct->surface[k]);
+    if (!n || s->c->analysis.type != PM_ANALYSIS_EXPLICIT)
+        return PM_OK;
+    char path[PM_PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/forces.csv", dir);
+    log->f = fopen(path, "w");
+    if (!log->f)
+        return pm_error_set(PM_EIO, "cannot write '%s': %s", path, strerror(errno));
+    fputs("time", log->f);
+    for (size_t k = 0; k < ct->n_surfaces; k++) {
+        if (!reported(&ct->surface[k]))
+            continue;
+        char name[PM_NAME_MAX + 32];
+        surface_name(s, &ct->surface[k], name, sizeof name);
+        fprintf(log->f, ",%s_normal,%s_tangent_x,%s_tangent_y,%s_x,%s_y", name, name, name, name, name);
+    }
+    fputc('\n', log->f);
+    log->every = s->c->output.interval / 20;
+    log->next = log->every;
+    for (size_t k = 0; k < ct->n_surfaces; k++)
+        memset(&s->contact->surface[k].impulse, 0, sizeof s->contact->surface[k].impulse);
+    return fflush(log->f) == 0 ? PM_OK : pm_error_set(PM_EIO, "forces.csv: write failed");
+}
+
+int pm_forces_log_step(pm_forces_log *log, pm_sim *s, int force)
+{
+    if (!log->f)
+        return PM_OK;
+    const double eps = 1e-12 * s->c->analysis.end_time, span = s->t - log->t_last;
+    if ((!force && s->t < log->next - eps) || !(span > 0))
+        return PM_OK;
+    fprintf(log->f, "%.17g", s->t);
+    pm_contact *ct = s->contact;
+    for (size_t k = 0; k < ct->n_surfaces; k++) {
+        pm_contact_surface *sf = &ct->surface[k];
+        if (!reported(sf))
+            continue;
+        const pm_contact_force *J = &sf->impulse;
+        fprintf(log->f, ",%.9g,%.9g,%.9g,%.9g,%.9g", J->normal / span, J->tangent[0] / span, J->tangent[1] / span,
+                J->force[0] / span, J->force[1] / span);
+        memset(&sf->impulse, 0, sizeof sf->impulse);
+    }
+    fputc('\n', log->f);
+    log->t_last = s->t;
+    while (log->next <= s->t + eps)
+        log->next += log->every;
+    return fflush(log->f) == 0 && !ferror(log->f) ? PM_OK : pm_error_set(PM_EIO, "forces.csv: write failed");
+}
+
+int pm_forces_log_close(pm_forces_log *log)
+{
+    const int rc = log->f && fclose(log->f) != 0 ? pm_error_set(PM_EIO, "forces.csv: write failed") : PM_OK;
+    memset(log, 0, sizeof *log);
+    return rc;
+}
