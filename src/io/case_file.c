@@ -109,6 +109,7 @@ static int parse_root(pm_case *c, json_t *root)
     pm_check(pm_case_parse_output(c, json_object_get(root, "output")));
     pm_check(pm_case_parse_sinks(c, json_object_get(root, "sinks")));
     pm_check(pm_case_parse_obstacles(c, json_object_get(root, "obstacles")));
+    pm_check(pm_case_parse_loads(c, json_object_get(root, "loads")));
     return pm_case_check_sizes(c);
 }
 
@@ -189,6 +190,7 @@ void pm_case_free(pm_case *c)
     free(c->materials);
     free(c->bcs);
     pm_case_free_obstacles(c);
+    pm_case_free_loads(c);
     free(c->probes);
     json_decref(c->doc);
     memset(c, 0, sizeof *c);
