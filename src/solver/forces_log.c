@@ -2,6 +2,7 @@
 #include "solver/forces_log.h"
 
 #include "contact/contact.h"
+#include "io/plot.h"
 #include "pmech/error.h"
 
 #include <errno.h>
@@ -31,11 +32,11 @@ int pm_forces_log_open(pm_forces_log *log, const pm_sim *s, const char *dir)
         n += reported(&ct->surface[k]);
     if (!n || s->c->analysis.type != PM_ANALYSIS_EXPLICIT)
         return PM_OK;
-    char path[PM_PATH_MAX + 32];
-    snprintf(path, sizeof path, "%s/forces.csv", dir);
-    log->f = fopen(path, "w");
+    snprintf(log->csv, sizeof log->csv, "%s/forces.csv", dir);
+    snprintf(log->png, sizeof log->png, "%s/forces.png", dir);
+    log->f = fopen(log->csv, "w");
     if (!log->f)
-        return pm_error_set(PM_EIO, "cannot write '%s': %s", path, strerror(errno));
+        return pm_error_set(PM_EIO, "cannot write '%s': %s", log->csv, strerror(errno));
     fputs("time", log->f);
     for (size_t k = 0; k < ct->n_surfaces; k++) {
         if (!reported(&ct->surface[k]))
@@ -43,6 +44,8 @@ int pm_forces_log_open(pm_forces_log *log, const pm_sim *s, const char *dir)
         char name[PM_NAME_MAX + 32];
         surface_name(s, &ct->surface[k], name, sizeof name);
         fprintf(log->f, ",%s_normal,%s_tangent_x,%s_tangent_y,%s_x,%s_y", name, name, name, name, name);
+        if (log->n_plot < sizeof log->column / sizeof log->column[0])
+            snprintf(log->column[log->n_plot++], sizeof log->column[0], "%s_normal", name);
     }
     fputc('\n', log->f);
     log->every = s->c->output.interval / 20;
@@ -71,6 +74,7 @@ int pm_forces_log_step(pm_forces_log *log, pm_sim *s, int force)
         memset(&sf->impulse, 0, sizeof sf->impulse);
     }
     fputc('\n', log->f);
+    log->rows++;
     log->t_last = s->t;
     while (log->next <= s->t + eps)
         log->next += log->every;
@@ -79,7 +83,15 @@ int pm_forces_log_step(pm_forces_log *log, pm_sim *s, int force)
 
 int pm_forces_log_close(pm_forces_log *log)
 {
-    const int rc = log->f && fclose(log->f) != 0 ? pm_error_set(PM_EIO, "forces.csv: write failed") : PM_OK;
+    int rc = log->f && fclose(log->f) != 0 ? pm_error_set(PM_EIO, "forces.csv: write failed") : PM_OK;
+    if (!rc && log->f && log->rows >= 2) {
+        const char *cols[sizeof log->column / sizeof log->column[0]];
+        for (size_t k = 0; k < log->n_plot; k++)
+            cols[k] = log->column[k];
+        const pm_plot_opts o = {"Normal force of each surface on the material", "time (s)",
+                                "force (N per unit thickness)", 0, 0, 1, 1};
+        rc = pm_plot_csv(log->csv, "time", 1.0, cols, 1.0, log->n_plot, log->png, &o);
+    }
     memset(log, 0, sizeof *log);
     return rc;
 }
