@@ -40,7 +40,7 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
     pm_check(pm_loads_apply(s, s->t));
-    pm_xp_grid_update(s, dt, 1);
+    pm_xp_grid_update(s, dt);
     pm_nodal *nd = &s->nd;
     if (musl) {
         pm_xp_musl_project(s, dt);
@@ -71,7 +71,7 @@ static int step_usf(pm_sim *s, double dt)
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
     pm_check(pm_loads_apply(s, s->t));
-    pm_xp_grid_update(s, dt, 1);
+    pm_xp_grid_update(s, dt);
     pm_xp_g2p_usf(s, dt);
     return PM_OK;
 }
