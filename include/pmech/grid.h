@@ -30,6 +30,10 @@ typedef struct pm_cell_set {
     int32_t *cells;    /**< cell indices */
 } pm_cell_set;
 
+/** Largest |coordinate| / cell size a grid accepts: a double holds a coordinate to 2.2e-16 of its size,
+ *  so beyond this a point's place in its cell is known to worse than 2.2e-7 of the cell. */
+#define PM_COORD_PER_CELL_MAX 1e9
+
 /** A background grid. Structured rectangle grids keep their spacing for O(1) point location. */
 typedef struct pm_grid {
     pm_element element;      /**< cell type */

@@ -141,6 +141,8 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
                             "is available in explicit analyses only so far; use \"none\" with implicit and "
                             "quasi_static",
                             NULL);
+    pm_check(jr_number(&cx, a, "max_steps", 0, 1e8, &c->analysis.max_steps));
+    pm_check(jr_range(&cx, "max_steps", c->analysis.max_steps, 1, 0, 1e15, 0));
     long n;
     pm_check(jr_int(&cx, a, "load_steps", 0, 10, 1, 100000000, &n));
     c->analysis.load_steps = (int)n;

@@ -110,6 +110,9 @@ int pm_case_parse_bcs(pm_case *c, json_t *bcs)
                 if (which < 0)
                     return pm_error_set(PM_EINPUT, "%s: %s[%zu]: got %s; allowed: \"x\" or \"y\"", c->file, bp, k2,
                                         jr_text(e));
+                if (bc->dirs & (1u << which)) /* a repeated direction is a typo for the other one, most likely */
+                    return pm_error_set(PM_EINPUT, "%s: %s[%zu]: \"%s\" is listed twice; each direction at most once",
+                                        c->file, bp, k2, dirs[which]);
                 bc->dirs |= 1u << which;
             }
             if (json_object_get(b, "until")) {

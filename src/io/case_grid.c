@@ -62,6 +62,17 @@ int pm_case_parse_grid(pm_case *c, json_t *g)
                                 (long long)n);
         c->grid.cells[d] = (int)n;
     }
+    for (int d = 0; d < PM_DIM; d++) {
+        /* a double holds a coordinate to 2.2e-16 of its size: far from 0 a small cell has no room left */
+        const double h = c->grid.size[d] / c->grid.cells[d];
+        const double far = fmax(fabs(c->grid.origin[d]), fabs(c->grid.origin[d] + c->grid.size[d]));
+        if (!(far / h <= PM_COORD_PER_CELL_MAX))
+            return pm_error_set(PM_EINPUT,
+                                "%s: grid.origin: coordinates up to %g with cells of %g m: a double resolves %.2g of a "
+                                "cell there, too coarse for shape functions (allowed: |coordinate| / cell below %g); "
+                                "move the origin near 0",
+                                c->file, far, h, far * 2.2e-16 / h, PM_COORD_PER_CELL_MAX);
+    }
     pm_check(jr_enum(&cx, g, "element", 0, elements, PM_QUAD4, &v));
     c->grid.element = v;
     return PM_OK;

@@ -268,6 +268,8 @@ int pm_grid_gmsh_read(pm_grid *g, const char *path)
     pm_msh m;
     int rc = pm_msh_parse(path, &m);
     if (!rc)
+        rc = pm_msh_check_elements(&m, path);
+    if (!rc)
         rc = build(g, &m, path);
     pm_msh_free(&m);
     return rc;

@@ -32,6 +32,7 @@ typedef struct pm_msh {
     size_t n_tri, n_quad, n_line, n_pt;
     long *tri, *quad, *line, *pt;                 /**< node tags, 3, 4, 2, 1 per element */
     int *tri_ent, *quad_ent, *line_ent, *pt_ent;  /**< entity tag of each element */
+    long *tri_tag, *quad_tag;                     /**< element tags of the 2-D elements (for messages) */
     size_t cap_tri, cap_quad, cap_line, cap_pt;
 } pm_msh;
 
@@ -44,5 +45,13 @@ int pm_msh_parse(const char *path, pm_msh *m);
 
 /** Free what pm_msh_parse() allocated. */
 void pm_msh_free(pm_msh *m);
+
+/**
+ * Refuse 2-D elements that would make a wrong grid without failing later (gmsh_check.c): an element
+ * with a repeated node, zero area or (quads) corners that do not all turn the same way; two elements
+ * with the same nodes; two elements on the same side of one edge (overlapping); two nodes at one point.
+ * Returns PM_OK, PM_ENOMEM, or PM_EINPUT naming @p path and the element tags (or node tags).
+ */
+int pm_msh_check_elements(const pm_msh *m, const char *path);
 
 #endif

@@ -103,6 +103,22 @@ static int expect(reader *r, const char *word)
 
 #define MAX_COUNT 100000000L
 
+/* Counts read from the file size arrays before their items are read: an item takes at least
+ * min_chars characters of what is left, so a count the rest of the file cannot hold is refused
+ * before it allocates (an 84-byte file could otherwise claim a billion nodes). */
+static int get_count_fits(reader *r, long *v, long max, long min_chars, const char *what)
+{
+    pm_check(get_count(r, v, max, what));
+    const long room = (long)((r->end - r->p) / min_chars) + 1;
+    if (*v > room) {
+        char m[200];
+        snprintf(m, sizeof m, "%s %ld: the %ld bytes left in the file hold at most %ld", what, *v,
+                 (long)(r->end - r->p), room);
+        return bad(r, m);
+    }
+    return PM_OK;
+}
+
 void pm_msh_free(pm_msh *m)
 {
     free(m->names);
@@ -113,6 +129,7 @@ void pm_msh_free(pm_msh *m)
     free(m->xy);
     free(m->tri); free(m->quad); free(m->line); free(m->pt);
     free(m->tri_ent); free(m->quad_ent); free(m->line_ent); free(m->pt_ent);
+    free(m->tri_tag); free(m->quad_tag);
 }
 
 static int read_format(reader *r)
@@ -136,7 +153,7 @@ static int read_format(reader *r)
 static int read_names(reader *r, pm_msh *m)
 {
     long n;
-    pm_check(get_count(r, &n, 100000, "number of physical names"));
+    pm_check(get_count_fits(r, &n, 100000, 8, "number of physical names"));
     m->names = calloc((size_t)n + 1, sizeof *m->names);
     if (!m->names)
         return pm_error_set(PM_ENOMEM, "out of memory");
@@ -170,7 +187,7 @@ static int read_entities(reader *r, pm_msh *m)
 {
     long cnt[4];
     for (int d = 0; d < 4; d++)
-        pm_check(get_count(r, &cnt[d], MAX_COUNT, "number of entities"));
+        pm_check(get_count_fits(r, &cnt[d], MAX_COUNT, 10, "number of entities"));
     size_t total = (size_t)(cnt[0] + cnt[1] + cnt[2] + cnt[3]);
     m->ent = calloc(total + 1, sizeof *m->ent);
     if (!m->ent)
@@ -182,7 +199,7 @@ static int read_entities(reader *r, pm_msh *m)
             pm_check(get_long(r, &tag));
             for (int k = 0; k < (d == 0 ? 3 : 6); k++)
                 pm_check(get_double(r, &v));
-            pm_check(get_count(r, &np, 10000, "number of physical tags"));
+            pm_check(get_count_fits(r, &np, 10000, 2, "number of physical tags"));
             pm_msh_entity *e = &m->ent[m->n_ent++];
             e->dim = d;
             e->tag = (int)tag;
@@ -208,11 +225,19 @@ static int read_nodes(reader *r, pm_msh *m)
 {
     long nblocks, nnodes, mintag, maxtag;
     pm_check(get_count(r, &nblocks, MAX_COUNT, "number of node blocks"));
-    pm_check(get_count(r, &nnodes, MAX_COUNT, "number of nodes"));
+    /* a node is at least a tag and three coordinates */
+    pm_check(get_count_fits(r, &nnodes, MAX_COUNT, 8, "number of nodes"));
     pm_check(get_long(r, &mintag));
     pm_check(get_long(r, &maxtag));
     if (maxtag < 0 || maxtag > 4 * MAX_COUNT || mintag < 0 || (nnodes > 0 && mintag > maxtag))
         return bad(r, "node tags out of range");
+    /* tags index a table as long as the largest tag: a few gaps are normal, a sparse numbering is not */
+    if (maxtag > 8 * nnodes + 4096) {
+        char msg[200];
+        snprintf(msg, sizeof msg, "node tags up to %ld for %ld nodes: renumber the nodes in Gmsh so that tags "
+                 "run from 1 to about the node count", maxtag, nnodes);
+        return bad(r, msg);
+    }
     m->max_tag = maxtag;
     m->tag_index = malloc(((size_t)maxtag + 1) * sizeof(long));
     m->xy = malloc(((size_t)nnodes + 1) * PM_DIM * sizeof(double));
@@ -255,10 +280,17 @@ static int read_nodes(reader *r, pm_msh *m)
     return expect(r, "$EndNodes");
 }
 
-static int push_elem(long **nodes, int **ents, size_t *n, size_t *cap, int npe, const long *v, int ent)
+static int push_elem(long **nodes, int **ents, long **tags, size_t *n, size_t *cap, int npe, const long *v, int ent,
+                     long tag)
 {
     if (*n == *cap) {
         size_t nc = *cap ? 2 * *cap : 1024;
+        if (tags) {
+            long *t = realloc(*tags, nc * sizeof(long));
+            if (!t)
+                return pm_error_set(PM_ENOMEM, "out of memory for elements");
+            *tags = t;
+        }
         long *a = realloc(*nodes, nc * (size_t)npe * sizeof(long));
         if (!a)
             return pm_error_set(PM_ENOMEM, "out of memory for elements");
@@ -271,6 +303,8 @@ static int push_elem(long **nodes, int **ents, size_t *n, size_t *cap, int npe, 
     }
     memcpy(*nodes + (size_t)npe * *n, v, (size_t)npe * sizeof(long));
     (*ents)[*n] = ent;
+    if (tags)
+        (*tags)[*n] = tag;
     (*n)++;
     return PM_OK;
 }
@@ -279,7 +313,8 @@ static int read_elements(reader *r, pm_msh *m)
 {
     long nblocks, nel, mn, mx;
     pm_check(get_count(r, &nblocks, MAX_COUNT, "number of element blocks"));
-    pm_check(get_count(r, &nel, MAX_COUNT, "number of elements"));
+    /* an element is at least a tag and one node */
+    pm_check(get_count_fits(r, &nel, MAX_COUNT, 4, "number of elements"));
     pm_check(get_long(r, &mn));
     pm_check(get_long(r, &mx));
     for (long b = 0; b < nblocks; b++) {
@@ -311,10 +346,17 @@ static int read_elements(reader *r, pm_msh *m)
                     return bad(r, "element refers to an undefined node");
             }
             switch (type) {
-            case 15: pm_check(push_elem(&m->pt, &m->pt_ent, &m->n_pt, &m->cap_pt, 1, v, (int)etag)); break;
-            case 1: pm_check(push_elem(&m->line, &m->line_ent, &m->n_line, &m->cap_line, 2, v, (int)etag)); break;
-            case 2: pm_check(push_elem(&m->tri, &m->tri_ent, &m->n_tri, &m->cap_tri, 3, v, (int)etag)); break;
-            default: pm_check(push_elem(&m->quad, &m->quad_ent, &m->n_quad, &m->cap_quad, 4, v, (int)etag)); break;
+            case 15: pm_check(push_elem(&m->pt, &m->pt_ent, NULL, &m->n_pt, &m->cap_pt, 1, v, (int)etag, tag)); break;
+            case 1:
+                pm_check(push_elem(&m->line, &m->line_ent, NULL, &m->n_line, &m->cap_line, 2, v, (int)etag, tag));
+                break;
+            case 2:
+                pm_check(push_elem(&m->tri, &m->tri_ent, &m->tri_tag, &m->n_tri, &m->cap_tri, 3, v, (int)etag, tag));
+                break;
+            default:
+                pm_check(push_elem(&m->quad, &m->quad_ent, &m->quad_tag, &m->n_quad, &m->cap_quad, 4, v, (int)etag,
+                                   tag));
+                break;
             }
         }
     }

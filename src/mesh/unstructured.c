@@ -113,6 +113,16 @@ int pm_grid_unstructured(pm_grid *g, size_t n_nodes, const double *x, size_t n_c
         double hc = (npc == 3 ? a2 : 0.5 * a2) / emax;
         g->h_min = fmin(g->h_min, hc);
     }
+    const double far = fmax(fmax(fabs(g->lo[0]), fabs(g->hi[0])), fmax(fabs(g->lo[1]), fabs(g->hi[1])));
+    if (!(far / g->h_min <= PM_COORD_PER_CELL_MAX)) {
+        const double h = g->h_min;
+        pm_grid_free(g);
+        return pm_error_set(PM_EINPUT,
+                            "node coordinates up to %g with cells %g m across: a double resolves %.2g of a cell there, "
+                            "too coarse for shape functions (allowed: |coordinate| / cell below %g); move the mesh "
+                            "near 0",
+                            far, h, far * 2.2e-16 / h, PM_COORD_PER_CELL_MAX);
+    }
     int rc = pm_grid_locator_build(g);
     if (rc) {
         pm_grid_free(g);

@@ -3,6 +3,7 @@
 #include "boundary.h"
 
 #include "contact/contact.h"
+#include "contact/multibody.h"
 #include "pmech/error.h"
 
 #include <math.h>
@@ -139,6 +140,8 @@ void pm_sim_update_constraints(pm_sim *s)
                     nd->vfix[PM_DIM * set->nodes[i] + d] = 0.0;
             }
         t->done = 1;
+        if (s->mb) /* every body field holds the switched nodes */
+            pm_multibody_copy_conditions(s->mb, nd);
     }
     /* the contact set of this step: meshfree nodes moved onto or past walls since the last one */
     pm_contact_detect(s->contact, &s->grid, s->t);

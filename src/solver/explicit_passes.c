@@ -10,6 +10,7 @@
  * the same code as the written-out 2-D ones.
  */
 #include "explicit_internal.h"
+#include "contact/multibody.h"
 #include "fbar.h"
 #include "point_update.h"
 
@@ -98,6 +99,8 @@ static inline void lq_eval(const lq_grid *q, const double xp[PM_DIM], int32_t cx
  * inline, without the per-cell reuse of the LQ instances). */
 static inline int stencil_at(const pm_sim *s, size_t i, pm_stencil *st)
 {
+    if (s->mb) /* body fields: the nodes of the particle's own field */
+        return pm_xp_stencil(s, i, st);
     if (s->approx->fast_linear_quad) {
         const lq_grid q = lq_of(&s->grid);
         int32_t cx, cy;
@@ -310,8 +313,11 @@ long pm_xp_p2g(pm_sim *s, double mom_shift, int with_force, const double g[PM_DI
     p2g_ctx c = {mom_shift, with_force, {0}};
     for (int d = 0; d < PM_DIM; d++)
         c.g[d] = g[d];
-    return pm_scatter_pass(s, s->approx->fast_linear_quad ? p2g_range_lq : p2g_range, &c,
-                           PM_Z_MASS | PM_Z_MOM | PM_Z_FORCE).bad;
+    const long bad = pm_scatter_pass(s, s->approx->fast_linear_quad ? p2g_range_lq : p2g_range, &c,
+                                     PM_Z_MASS | PM_Z_MOM | PM_Z_FORCE).bad;
+    if (s->mb && bad == LONG_MAX) /* where the body fields meet, from this step's masses */
+        pm_multibody_prepare(s);
+    return bad;
 }
 
 /* MUSL: particle velocities from nodal accelerations, then their momentum back to the grid. */

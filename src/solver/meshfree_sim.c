@@ -258,12 +258,11 @@ void pm_mf_impose(pm_sim *s, double *nodal, int what)
     }
 }
 
-void pm_mf_impose_update(pm_sim *s, double dt, int constrain_start)
+void pm_mf_impose_update(pm_sim *s, double dt)
 {
     pm_mf *mf = s->mf;
     pm_nodal *nd = &s->nd;
-    if (constrain_start)
-        pm_mf_impose(s, nd->vel, 0);
+    pm_mf_impose(s, nd->vel, 0);
     pm_mf_impose(s, nd->vel_new, 0);
     for (int c = 0; c < 2; c++) {
         if (!mf->kd[c])
@@ -333,8 +332,25 @@ static void move_gmm_nodes(pm_sim *s, const double *d, double scale)
         mf->cloud->x[k] += scale * dx[k];
 }
 
+/* Points outside the case's grid stop the run as in MPM: the approximation would go on extrapolating
+ * from a node cloud the grid's conditions and output no longer describe. */
+static int points_inside(const pm_sim *s, long step)
+{
+    const pm_grid *bg = &s->mf->background;
+    const pm_particles *p = &s->p;
+    for (size_t i = 0; i < p->n; i++)
+        for (int d = 0; d < PM_DIM; d++) {
+            const double x = p->x[PM_DIM * i + d];
+            if (!(x >= bg->lo[d] && x <= bg->hi[d]))
+                return pm_error_set(PM_ESIM, "step %ld (t = %.6g s): particle %zu left the grid at (%.6g, %.6g)", step,
+                                    s->t, i, p->x[PM_DIM * i], p->x[PM_DIM * i + 1]);
+        }
+    return PM_OK;
+}
+
 int pm_mf_after_explicit(pm_sim *s, double dt, const double *vel)
 {
+    pm_check(points_inside(s, s->step));
     pm_mf *mf = s->mf;
     if (mf->rkpm)
         memcpy(mf->cloud->x, s->p.x, 2 * s->p.n * sizeof(double));
@@ -345,6 +361,7 @@ int pm_mf_after_explicit(pm_sim *s, double dt, const double *vel)
 
 int pm_mf_after_implicit(pm_sim *s, const double *du, const double *v, const double *a)
 {
+    pm_check(points_inside(s, s->step + 1));
     pm_mf *mf = s->mf;
     if (mf->rkpm)
         memcpy(mf->cloud->x, s->p.x, 2 * s->p.n * sizeof(double));

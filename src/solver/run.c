@@ -1,9 +1,11 @@
 /* The time loop of a whole run: steps, outputs at their cadence, progress, run.json. */
 #include "sim_internal.h"
 #include "solver/grid_output.h"
+#include "solver/run_checks.h"
 #include "solver/run_warnings.h"
 #include "solver/thread_governor.h"
 #include "flow.h"
+#include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
 #include "io/output.h"
@@ -142,6 +144,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     int threads = o->threads > 0 ? o->threads : omp_get_max_threads();
     pm_sim *s = NULL;
     pm_check(pm_sim_create(c, &s, threads));
+    int rc = pm_run_check_start(s);
+    if (rc) {
+        pm_sim_destroy(s);
+        return rc;
+    }
     if (o->threads <= 0 && !getenv("OMP_NUM_THREADS") && s->p.n < PM_PARTICLES_PER_THREAD_MIN) {
         /* A step of a few thousand particles takes tens of microseconds: the barriers between its
          * passes would cost more than a second thread gains, and far more when another process holds
@@ -158,7 +165,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_run_warnings warn;
     pm_run_warnings_begin(&warn, c, o->quiet);
     pm_output *out = NULL;
-    int rc = PM_OK, frame = 0;
+    int frame = 0;
     const char *dir = o->out_dir ? o->out_dir : c->output.directory;
     if (o->write_output) {
         rc = pm_output_open(&out, dir, c, pm_sim_frame_grid(s), &s->p);
@@ -183,6 +190,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_flow_log flog = {0};
     if (!rc && out)
         rc = pm_flow_log_open(&flog, s, dir);
+    if (!rc && out && s->mb)
+        rc = pm_multibody_log_open(s->mb, c, dir);
     double particle_steps = 0; /* the count changes with sources and sinks */
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
@@ -205,6 +214,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         if (rc)
             break;
         particle_steps += n_before;
+        if (s->mb)
+            pm_multibody_log_step(s->mb, dt);
         if (out && (rc = pm_flow_log_step(&flog, s)) != PM_OK)
             break;
         dt_min = fmin(dt_min, dt);
@@ -214,13 +225,18 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             rc = pm_output_probes(out, s->t, &s->p);
             if (!rc && s->t >= next_energy - eps) {
                 rc = write_energy(out, s);
+                if (!rc && s->mb)
+                    rc = pm_multibody_log_row(s->mb, c, s->t);
                 next_energy += interval / 20;
             }
             if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
                 rc = write_frame(out, s, dir, &frame);
                 last_frame_t = s->t;
-                while (next_frame <= s->t + eps)
-                    next_frame += interval;
+                /* computed, not stepped: adding an interval below the spacing of doubles near t would
+                 * leave next_frame where it is for ever */
+                next_frame = fmax(next_frame, interval * (floor((s->t + eps) / interval) + 1));
+                if (next_frame <= s->t + eps)
+                    next_frame = s->t + interval > s->t ? s->t + interval : nextafter(s->t, INFINITY);
             }
             if (rc)
                 break;
@@ -252,6 +268,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_progress_end(&pg, s->step, s->t, loop_seconds);
     close_implicit_files(&imf);
     int rc_log = pm_flow_log_close(&flog);
+    if (!rc && rc_log)
+        rc = rc_log;
+    rc_log = pm_multibody_log_close(s->mb);
     if (!rc && rc_log)
         rc = rc_log;
     pm_flow_totals ft;

@@ -78,9 +78,9 @@ check "listed in run.json" python3 -c "import json,sys; w=json.load(open('softE.
 PMECH_SCATTER=bogus expect_exit 2 "PMECH_SCATTER=bogus" "$PMECH" run "$SRC/examples/elastic_disks/case.json" -o scatter.out --quiet
 check "names the variable, the value and the allowed ones" sh -c 'grep -q "PMECH_SCATTER" err.txt && grep -q "bogus" err.txt && grep -q "colour" err.txt && grep -q "buffers" err.txt'
 
-# A run that diverges: a fixed time step 50x above the stable one.
-sed 's/"end_time": 3.5, "cfl": 0.2/"end_time": 3.5, "dt": 0.5/' "$SRC/examples/elastic_disks/case.json" > diverge.json
-expect_exit 1 "diverging run" "$PMECH" run diverge.json -o diverge.out --quiet
+# A run that stops: a disk thrown at 30 m/s leaves the [0, 1] grid after about 0.02 s.
+sed 's/"velocity": \[0.1, 0.1\]/"velocity": [30, 0]/; s/"interval": 0.05/"interval": 0.005/' "$SRC/examples/elastic_disks/case.json" > diverge.json
+expect_exit 1 "a body leaving the grid" "$PMECH" run diverge.json -o diverge.out --quiet
 check "names the step" grep -Eq 'step [0-9]+' err.txt
 check "names the particle" grep -Eq 'particle [0-9]+' err.txt
 check "run.json records exit 1" python3 -c "import json,sys; r=json.load(open('diverge.out/run.json')); sys.exit(0 if r['exit_status']==1 and 'particle' in r['message'] else 1)"

@@ -2,3 +2,7 @@ add_test(NAME cli.end_to_end
          COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/cli_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
                  ${CMAKE_CURRENT_BINARY_DIR}/cli_work)
 set_tests_properties(cli.end_to_end PROPERTIES LABELS cli TIMEOUT 600)
+add_test(NAME cli.refusals
+         COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/refusals_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
+                 ${CMAKE_CURRENT_BINARY_DIR}/refusals_work)
+set_tests_properties(cli.refusals PROPERTIES LABELS cli TIMEOUT 300)

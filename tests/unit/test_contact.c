@@ -261,12 +261,17 @@ static void gmm_walls(void **st)
     assert_int_equal(ct->surface[0].kind, PM_CONTACT_WALL);
     assert_true(ct->surface[0].guard && ct->surface[0].mu == 0.0 && ct->surface[0].axis == 0);
     assert_true(ct->surface[1].kind == PM_CONTACT_WALL && !ct->surface[1].guard && ct->surface[1].axis == 1);
-    /* GMM nodes: the corners of the 3 x 1 cells the block fills; 2 on x = 0, 4 on y = 0 */
+    /* GMM nodes: the corners of the 3 x 1 cells the block fills; 2 on x = 0, 4 on y = 0 touch */
     assert_int_equal(s->grid.n_nodes, 8);
     size_t on_left = 0, on_floor = 0;
     for (size_t k = 0; k < ct->n_node; k++) {
         const pm_contact_node *cn = &ct->node[k];
         const double *x = s->grid.x + PM_DIM * cn->node;
+        /* a wall also lists the nodes within reach of it, with their distance as the gap until the
+         * particles' gaps replace it; those on it have gap 0 */
+        assert_true(cn->gap <= ct->reach);
+        if (cn->gap > 0)
+            continue;
         if (cn->surface == 0) {
             on_left++;
             assert_true(x[0] == 0.0 && cn->normal[0] == -1.0 && cn->normal[1] == 0.0);

@@ -164,6 +164,34 @@ static void bad_files(void **state)
          "$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements\n",
          "degenerate"},
         {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n", "expected an integer"},
+        /* counts and tags the rest of the file cannot back are refused before they allocate */
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 90000000 1 90000000\n2 1 0 1\n1\n0 0 0\n$EndNodes\n",
+         "number of nodes 90000000: the"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1 1 300000000\n2 1 0 1\n300000000\n0 0 0\n$EndNodes\n",
+         "node tags up to 300000000 for 1 nodes"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1 1 3000000000\n", "node tags out of range"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n90000000 0 0 0\n$EndEntities\n",
+         "number of entities 90000000"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+         "$Elements\n1 90000000 1 90000000\n2 1 2 1\n1 1 2 3\n$EndElements\n",
+         "number of elements 90000000"},
+        /* meshes that used to build a wrong grid: the elements are named by their tags */
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+         "$Elements\n1 2 1 8\n2 1 2 2\n7 1 2 3\n8 2 3 1\n$EndElements\n",
+         "elements 7 and 8 have the same nodes"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n1 0.5 0\n"
+         "$EndNodes\n$Elements\n1 2 1 2\n2 1 2 2\n1 1 2 3\n2 2 1 4\n$EndElements\n",
+         "elements 1 and 2 overlap"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n2 0 0\n0 1 0\n1 2 0\n"
+         "$EndNodes\n$Elements\n1 1 5 5\n2 1 3 1\n5 1 2 3 4\n$EndElements\n",
+         "element 5 (a quad) is inverted"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 6 1 6\n2 1 0 6\n1\n2\n3\n4\n5\n6\n"
+         "0 0 0\n1 0 0\n0 1 0\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+         "$Elements\n1 2 1 2\n2 1 2 2\n1 1 2 3\n2 4 5 6\n$EndElements\n",
+         "nodes 1 and 4 are both at (0, 0)"},
+        {"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n0 0 0\n1 0 0\n0 1 0\n$EndNodes\n"
+         "$Elements\n1 1 1 1\n2 1 2 1\n4 1 2 2\n$EndElements\n",
+         "element 4 lists node 2 twice"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         pm_grid g;
