@@ -118,7 +118,7 @@ typedef struct pm_case_bc {
     unsigned dirs;                /**< fixed: bit 0 = x, bit 1 = y; velocity: components given */
     double value[2];              /**< velocity values (for the components in dirs) */
     double coefficient;           /**< friction coefficient (>= 0) */
-    double until;                 /**< velocity: prescribed until this time, then held (INFINITY or <= 0: always) */
+    double until;                 /**< velocity: prescribed until this time, then held; fixed: released at this time (INFINITY or <= 0: never) */
 } pm_case_bc;
 
 /** obstacles[].type */

@@ -24,7 +24,7 @@ static const char *const shape_rect[] = {"type", "min", "max", NULL}, *const sha
                          *const shape_grp[] = {"type", "name", NULL};
 /* every key of any condition; each type then allows its own */
 static const char *const bc_keys[] = {"type", "boundary", "directions", "value", "coefficient", "until", NULL};
-static const char *const bc_fixed[] = {"type", "boundary", "directions", NULL};
+static const char *const bc_fixed[] = {"type", "boundary", "directions", "until", NULL};
 static const char *const bc_velocity[] = {"type", "boundary", "value", "until", NULL};
 static const char *const bc_friction[] = {"type", "boundary", "coefficient", NULL};
 static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};

@@ -28,7 +28,8 @@ typedef struct pm_nodal {
     struct pm_timed_bc {
         int set;         /**< grid node set */
         unsigned dirs;   /**< components */
-        double until;    /**< time after which the nodes are held (velocity zero) */
+        double until;    /**< time after which the nodes are held (velocity zero), or released */
+        int release;     /**< 1: a fixed condition whose components become free at `until` */
         int done;        /**< 1 once switched */
     } *timed;
 } pm_nodal;
