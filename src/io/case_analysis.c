@@ -170,6 +170,9 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
         pm_check(jr_bool(&nc, jn, "line_search", 0, 1, &nw->line_search));
         pm_check(jr_int(&nc, jn, "max_step_cuts", 0, 8, 0, 60, &n));
         nw->max_step_cuts = (int)n;
+        pm_check(jr_number(&nc, jn, "absolute_tolerance", 0, 0, &nw->absolute_tolerance));
+        if (json_object_get(jn, "absolute_tolerance"))
+            pm_check(jr_range(&nc, "absolute_tolerance", nw->absolute_tolerance, 0, 1, INFINITY, 0));
     }
     return parse_strength_reduction(c, json_object_get(a, "strength_reduction"));
 }

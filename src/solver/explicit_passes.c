@@ -99,9 +99,7 @@ static inline void lq_eval(const lq_grid *q, const double xp[PM_DIM], int32_t cx
  * inline, without the per-cell reuse of the LQ instances). */
 static inline int stencil_at(const pm_sim *s, size_t i, pm_stencil *st)
 {
-    if (s->mb) /* body fields: the nodes of the particle's own field */
-        return pm_xp_stencil(s, i, st);
-    if (s->approx->fast_linear_quad) {
+    if (s->approx->fast_linear_quad) { /* never with body fields (pm_sim_create) */
         const lq_grid q = lq_of(&s->grid);
         int32_t cx, cy;
         lq_cell(&q, s->p.cell[i], &cx, &cy);
@@ -110,6 +108,8 @@ static inline int stencil_at(const pm_sim *s, size_t i, pm_stencil *st)
         lq_eval(&q, s->p.x + PM_DIM * i, cx, cy, st->N, st->dN);
         return PM_OK;
     }
+    if (s->mb) /* body fields: the nodes of the particle's own field */
+        return pm_xp_stencil(s, i, st);
     return s->approx->ops->eval(s->approx, &s->p, i, st);
 }
 
