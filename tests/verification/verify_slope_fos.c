@@ -22,6 +22,11 @@
  *    step cuts, 1 to 10 load steps, 25 or 50 iterations, force tolerance 1e-6 or 1e-8) and the
  *    reference's own scatter (charts and finite elements, 1.38 to 1.40).
  *  - MPM at h = H/10: reported, not judged (8 % high from the locking above).
+ *  Not converged, and not claimed to be: under refinement the MPM factor keeps falling, 1.509, 1.378,
+ *  1.341 at H/10, H/20, H/40 (examples/slope_fos, study.sh), so at H/40 it is 4.2 % below 1.4 and
+ *  the trend points further down (part of it may be Newton's difficulty on the finer grid: F = 1.2
+ *  already needs step cuts there). The H/20 row is judged as the answer of that mesh, which is what
+ *  users run; H/40 takes 190 s, too long for this suite, and is expected to fail a 2 % check.
  *  - RKPM (rk_cubic, one node per cell: node spacing H/10, 220 nodes): judged within 10 %, the
  *    over-estimate to be expected of a discretisation this coarse (MPM at the same spacing is 8 %
  *    high). It lands within 2 %; likely because one smoothed integration point per node constrains
