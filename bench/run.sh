@@ -22,7 +22,7 @@ table="$dir/table.md"
 } > "$table"
 
 run_case() { # name case.json threads
-  /usr/bin/time -f "%M" -o "$dir/mem" "$PMECH" run "$2" -o "$dir/out" --quiet --threads "$3"
+  /usr/bin/time -f "%M" -o "$dir/mem" "$PMECH" run "$2" -o "$dir/out" --overwrite --quiet --threads "$3"
   python3 - "$dir/out/run.json" "$1" "$3" "$(cat "$dir/mem")" >> "$table" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))

@@ -6,7 +6,7 @@ CASE=${2:-examples/elastic_disks/case.json}
 name=$(basename "$(dirname "$CASE")")
 out="demo-output/$name"
 echo "pmech demo: running $CASE"
-"$PMECH" run "$CASE" -o "$out"
+"$PMECH" run "$CASE" -o "$out" --overwrite
 echo
 echo "Results are in $out/:"
 echo "  particles.pvd   open it in ParaView (File > Open), then press Apply and Play"

@@ -28,7 +28,7 @@ c["output"]["interval"] = c["analysis"]["end_time"]
 c["output"]["probe_interval"] = 0.01
 json.dump(c, open(sys.argv[2], "w"))
 PY
-        "$PMECH" run "$TMP/case.json" -o "$TMP/out" --quiet --threads 1 || true
+        "$PMECH" run "$TMP/case.json" -o "$TMP/out" --overwrite --quiet --threads 1 || true
         python3 - "$TMP/case.json" "$TMP/out" "$label" "$k" >> "$TMP/results" <<'PY'
 import csv, json, math, sys
 c = json.load(open(sys.argv[1]))

@@ -148,6 +148,15 @@ typedef struct pm_case_obstacle {
     double penalty_factor;        /**< penalty law: multiplies the default stiffness (default 1) */
 } pm_case_obstacle;
 
+/** loads[]: a force on a set of particles, shared by their initial volumes. */
+typedef struct pm_case_particle_load {
+    char name[PM_NAME_MAX];
+    int nearest;                  /**< 1: the particle nearest to point; 0: the particles in [min, max] */
+    double point[2];
+    double min[2], max[2];
+    pm_timefn force[2];           /**< total force per component (N per unit thickness; per radian axisymmetric) */
+} pm_case_particle_load;
+
 /** probes[] */
 typedef struct pm_case_probe {
     char name[PM_NAME_MAX];
@@ -163,6 +172,8 @@ typedef struct pm_newton_opts {
     int max_iterations;           /**< default 25 */
     int line_search;              /**< default 1 */
     int max_step_cuts;            /**< halvings of dt or the load increment before giving up (default 8) */
+    double absolute_tolerance;    /**< residual norm that counts as converged whatever its scale; 0 = tolerance
+                                       x the case's characteristic force (pm_implicit_characteristic_force) */
 } pm_newton_opts;
 
 /** analysis.strength_reduction: search for the factor of safety (pmech/strength_reduction.h). */
@@ -196,6 +207,7 @@ typedef struct pm_case {
         double gravity[2];
         double gravity_ramp_time;
         double damping;
+        double pic;               /**< MUSL: PIC share of the particle velocity update, 1 - the key flip (0: FLIP) */
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
@@ -234,6 +246,8 @@ typedef struct pm_case {
     pm_case_contact_pair *contact_pairs; /**< body-body contact laws; none: one field, bodies stick */
     size_t n_obstacles;
     pm_case_obstacle *obstacles;
+    size_t n_loads;
+    pm_case_particle_load *loads;
     void *doc;                    /**< the JSON document the case was read from (private; pm_case_set edits it) */
 } pm_case;
 

@@ -13,14 +13,15 @@
 extern "C" {
 #endif
 
-/** Status codes. The CLI maps PM_EINPUT to exit code 2, PM_ESIM to exit 1. */
+/** Status codes. The CLI maps PM_EINPUT to exit code 2, PM_ESIM to exit 1, PM_EINTR to 128 + the signal. */
 enum pm_status {
     PM_OK = 0,
     PM_EINPUT = -1,  /**< invalid case file, command line or parameters */
     PM_ESIM = -2,    /**< the simulation failed (NaN, inversion, divergence) */
     PM_ENOMEM = -3,  /**< allocation failed */
     PM_EIO = -4,     /**< file could not be read or written */
-    PM_EINTERNAL = -5 /**< a bug: an invariant of pmech itself was broken */
+    PM_EINTERNAL = -5, /**< a bug: an invariant of pmech itself was broken */
+    PM_EINTR = -6     /**< a run stopped on request (SIGINT, SIGTERM) after a complete step */
 };
 
 /**

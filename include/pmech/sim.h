@@ -6,6 +6,7 @@
 #ifndef PMECH_SIM_H
 #define PMECH_SIM_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "pmech/case.h"
@@ -123,6 +124,9 @@ typedef struct pm_run_opts {
     int write_output;      /**< 0: write no files (tests) */
     int verbose;           /**< implicit runs: Newton iterations also on stderr when no files are written */
     pm_run_stats *stats;   /**< if not NULL, receives what the run reached (also when it fails) */
+    /** if not NULL: a signal number (SIGINT, SIGTERM) stored here, e.g. by a signal handler, stops the run
+     *  after the step in progress with PM_EINTR; outputs are closed and run.json says so */
+    const volatile sig_atomic_t *interrupt;
 } pm_run_opts;
 
 /**

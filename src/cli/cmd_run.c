@@ -10,13 +10,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RUN_USAGE "pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]\n"
+#define RUN_USAGE "pmech run CASE.json [-o DIR] [--overwrite] [--quiet] [--verbose] [--threads N]\n"
 
 void pm_cmd_run_usage(FILE *f)
 {
     fprintf(f, "usage: " RUN_USAGE
                "  Run the case file CASE.json (keys: docs/input.md) to its end time.\n"
                "  -o, --output DIR  write results to DIR instead of the case's output.directory\n"
+               "  --overwrite       replace the outputs of an earlier run in that directory (without it such a\n"
+               "                    directory is refused and nothing in it is touched)\n"
                "  -q, --quiet       no progress line\n"
                "  -v, --verbose     implicit runs: print every Newton iteration instead of the progress line\n"
                "  --threads N       OpenMP threads (default: OMP_NUM_THREADS if set, else all cores, but one\n"
@@ -70,6 +72,7 @@ static int run_strength_reduction(const pm_case *c, const pm_run_opts *o, const 
 int pm_cmd_run(int argc, char **argv)
 {
     const char *case_file = NULL;
+    int overwrite = 0;
     pm_run_opts o = {.out_dir = NULL, .quiet = 0, .threads = 0, .write_output = 1};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help"))
@@ -77,7 +80,11 @@ int pm_cmd_run(int argc, char **argv)
         if (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--output")) {
             if (++i >= argc)
                 return bad_usage("-o needs a directory");
+            if (!argv[i][0])
+                return bad_usage("-o \"\": the output directory is empty (give a directory, e.g. -o .)");
             o.out_dir = argv[i];
+        } else if (!strcmp(argv[i], "--overwrite")) {
+            overwrite = 1;
         } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
             o.quiet = 1;
         } else if (!strcmp(argv[i], "--verbose") || !strcmp(argv[i], "-v")) {
@@ -110,12 +117,22 @@ int pm_cmd_run(int argc, char **argv)
         return pm_exit_code(rc);
     }
     const char *dir = o.out_dir ? o.out_dir : c.output.directory;
-    if (c.analysis.strength_reduction.enabled) {
-        rc = run_strength_reduction(&c, &o, dir);
+    int lock_fd = -1;
+    rc = pm_cli_claim_output(dir, overwrite, &lock_fd);
+    if (rc) {
+        fprintf(stderr, "pmech: %s\n", pm_error_message());
         pm_case_free(&c);
         return pm_exit_code(rc);
     }
+    o.interrupt = pm_cli_signals_install();
+    if (c.analysis.strength_reduction.enabled) {
+        rc = run_strength_reduction(&c, &o, dir);
+        pm_cli_release_output(lock_fd);
+        pm_case_free(&c);
+        return rc == PM_EINTR ? 128 + (int)*o.interrupt : pm_exit_code(rc);
+    }
     rc = pm_run(&c, &o, NULL);
+    pm_cli_release_output(lock_fd);
     if (rc) {
         fprintf(stderr, "pmech: %s\n", pm_error_message());
         if (rc != PM_EINPUT)
@@ -124,5 +141,5 @@ int pm_cmd_run(int argc, char **argv)
         fprintf(stderr, "pmech: results in %s/ (open %s/particles.pvd in ParaView)\n", dir, dir);
     }
     pm_case_free(&c);
-    return pm_exit_code(rc);
+    return rc == PM_EINTR ? 128 + (int)*o.interrupt : pm_exit_code(rc);
 }

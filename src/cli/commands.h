@@ -4,6 +4,7 @@
 #ifndef PMECH_CLI_COMMANDS_H
 #define PMECH_CLI_COMMANDS_H
 
+#include <signal.h>
 #include <stdio.h>
 
 /** `pmech run CASE.json [-o DIR] [--quiet] [--verbose] [--threads N]` */
@@ -26,5 +27,20 @@ void pm_cmd_render_usage(FILE *f);
  * and starts the program again with @p argv (returns only when nothing was to be done, or exec failed).
  */
 void pm_cli_passive_wait(char **argv);
+
+/**
+ * Claim @p dir for one run: create it, lock it against other pmech runs (DIR/.pmech.lock, held until
+ * pm_cli_release_output or the end of the process) and refuse it when it holds an earlier run's outputs
+ * unless @p overwrite. Returns PM_OK with *lock_fd set, or PM_EINPUT / PM_EIO with a message.
+ */
+int pm_cli_claim_output(const char *dir, int overwrite, int *lock_fd);
+/**
+ * Catch SIGINT and SIGTERM: the first is stored in the returned flag (pass it as pm_run_opts.interrupt
+ * so the run stops after its current step); a second ends the process at once with 128 + the signal.
+ */
+const volatile sig_atomic_t *pm_cli_signals_install(void);
+
+/** Release the lock pm_cli_claim_output took (-1: nothing to release). */
+void pm_cli_release_output(int lock_fd);
 
 #endif

@@ -122,6 +122,7 @@ typedef struct pm_contact_surface {
     double stiffness;        /**< penalty law: (c / h)^2 times the penalty factor: force per node mass and
                                   penetration */
     pm_contact_force f;      /**< over the last apply */
+    pm_contact_force impulse;/**< the same terms times dt, summed over the applies since a reader reset it */
 } pm_contact_surface;
 
 /** A node touching a surface. */

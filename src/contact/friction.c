@@ -38,7 +38,7 @@ int pm_contact_nodal_coulomb(const double normal[PM_DIM], double mu, double v[PM
 }
 
 /* Normal velocity cut by dvn > 0, the tangential speed by up to mu dvn (never reversed). */
-static void cut(const double normal[PM_DIM], double mu, double vn, double dvn, double v[PM_DIM])
+static void cut_slip(const double normal[PM_DIM], double mu, double vn, double dvn, double v[PM_DIM])
 {
     double vt[PM_DIM];
     for (int d = 0; d < PM_DIM; d++)
@@ -54,7 +54,7 @@ int pm_contact_nodal_coulomb_gap(const double normal[PM_DIM], double mu, double 
     const double vn = dot(v, normal);
     if (!(vn > allowed))
         return 0; /* separating, or closing no more than the gap in this step */
-    cut(normal, mu, vn, vn - allowed, v);
+    cut_slip(normal, mu, vn, vn - allowed, v);
     return 1;
 }
 
@@ -62,7 +62,7 @@ int pm_contact_penalty_coulomb(const double normal[PM_DIM], double mu, double pu
 {
     if (!(push > 0))
         return 0;
-    cut(normal, mu, dot(v, normal), push, v);
+    cut_slip(normal, mu, dot(v, normal), push, v);
     return 1;
 }
 
@@ -93,9 +93,12 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
         dv[d] = after[d] - before[d];
     const double dvn = dot(dv, cn->normal);
     sf->f.normal -= m * dvn / dt;
+    sf->impulse.normal -= m * dvn;
     for (int d = 0; d < PM_DIM; d++) {
         sf->f.force[d] += m * dv[d] / dt;
         sf->f.tangent[d] += m * (dv[d] - dvn * cn->normal[d]) / dt;
+        sf->impulse.force[d] += m * dv[d];
+        sf->impulse.tangent[d] += m * (dv[d] - dvn * cn->normal[d]);
     }
 }
 

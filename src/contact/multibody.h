@@ -38,6 +38,11 @@
  * n_a is -front_b). With three fields or more at a node, each field acts against the centre of mass
  * of all, with the law and front of the heaviest other field there.
  *
+ * Boundary surfaces and obstacles (contact.h) act on every field: pm_contact_apply runs once per field
+ * on that field's part of the arrays, and the surfaces' forces are summed over the fields. Their gaps
+ * (pm_contact_gaps) come from the particles of all bodies, so at a node where two fields carry mass
+ * next to an obstacle that one of them touches, the other is held back there as well.
+ *
  * The force between a pair is m (v_after - v_before) / dt summed over the shared nodes of the
  * heavier-partner field a (on a, from b), over the last apply; pm_multibody_log_* average it over
  * the rows of contact_forces.csv.

@@ -46,6 +46,7 @@ int pm_exit_code(int status)
     switch (status) {
     case PM_OK: return 0;
     case PM_EINPUT: return 2;
+    case PM_EINTR: return 130; /* 128 + SIGINT; pm_run records 128 + the signal it was given */
     default: return 1;
     }
 }

@@ -119,6 +119,10 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
     pm_check(jr_range(&cx, "gravity_ramp_time", c->analysis.gravity_ramp_time, 0, 0, INFINITY, 0));
     pm_check(jr_number(&cx, a, "damping", 0, 0, &c->analysis.damping));
     pm_check(jr_range(&cx, "damping", c->analysis.damping, 0, 0, 1, 0));
+    double flip;
+    pm_check(jr_number(&cx, a, "flip", 0, 1.0, &flip));
+    pm_check(jr_range(&cx, "flip", flip, 0, 0, 1, 0));
+    c->analysis.pic = 1.0 - flip;
     pm_check(jr_enum(&cx, a, "density_update", 0, density_updates, 0, &v));
     c->analysis.density_from_positions = v;
     if (c->method != PM_METHOD_MPM && c->analysis.density_from_positions)
@@ -166,6 +170,9 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
         pm_check(jr_bool(&nc, jn, "line_search", 0, 1, &nw->line_search));
         pm_check(jr_int(&nc, jn, "max_step_cuts", 0, 8, 0, 60, &n));
         nw->max_step_cuts = (int)n;
+        pm_check(jr_number(&nc, jn, "absolute_tolerance", 0, 0, &nw->absolute_tolerance));
+        if (json_object_get(jn, "absolute_tolerance"))
+            pm_check(jr_range(&nc, "absolute_tolerance", nw->absolute_tolerance, 0, 1, INFINITY, 0));
     }
     return parse_strength_reduction(c, json_object_get(a, "strength_reduction"));
 }

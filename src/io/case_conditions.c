@@ -227,6 +227,9 @@ int pm_case_parse_output(pm_case *c, json_t *o)
     pm_check(jr_only_keys(&cx, o, pm_case_keys(PM_KEYS_OUTPUT)));
     pm_check(jr_string(&cx, o, "directory", 0, def, c->output.directory, sizeof c->output.directory));
     if (!c->output.directory[0])
+        return pm_case_fail(c->file, "output.directory", "is empty; give a directory (\".\" for the current one)",
+                            NULL);
+    if (!c->output.directory[0])
         return pm_case_fail(c->file, "output.directory", "must not be empty", NULL);
     pm_check(jr_number(&cx, o, "interval", 0, c->analysis.end_time / 100, &c->output.interval));
     pm_check(jr_range(&cx, "interval", c->output.interval, 0, 1, INFINITY, 0));

@@ -110,6 +110,7 @@ static int parse_root(pm_case *c, json_t *root)
     pm_check(pm_case_parse_sinks(c, json_object_get(root, "sinks")));
     pm_check(pm_case_parse_contact_pairs(c, json_object_get(root, "contact_pairs")));
     pm_check(pm_case_parse_obstacles(c, json_object_get(root, "obstacles")));
+    pm_check(pm_case_parse_loads(c, json_object_get(root, "loads")));
     return pm_case_check_sizes(c);
 }
 
@@ -190,6 +191,7 @@ void pm_case_free(pm_case *c)
     free(c->materials);
     free(c->bcs);
     pm_case_free_obstacles(c);
+    pm_case_free_loads(c);
     free(c->probes);
     free(c->contact_pairs);
     json_decref(c->doc);

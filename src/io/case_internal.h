@@ -41,6 +41,7 @@ typedef enum pm_case_keyset_id {
     PM_KEYS_CONTACT_PAIR,
     PM_KEYS_OBSTACLE,
     PM_KEYS_TIMEFN,
+    PM_KEYS_LOAD,
     PM_KEYS_COUNT
 } pm_case_keyset_id;
 
@@ -126,6 +127,12 @@ int pm_case_parse_obstacles(pm_case *c, json_t *obs);
 
 /** Free the obstacles a case holds (pm_case_free calls it). */
 void pm_case_free_obstacles(pm_case *c);
+
+/** `loads` (after `analysis`). */
+int pm_case_parse_loads(pm_case *c, json_t *ls);
+
+/** Free the loads a case holds (pm_case_free calls it). */
+void pm_case_free_loads(pm_case *c);
 
 /**
  * A function of time at key path @p path: a number (constant), {"value": v, "ramp_time": T} or

@@ -8,13 +8,13 @@
 static const char *const top_keys[] = {"title", "dimension", "formulation", "method", "shape_function", "lme_gamma",
                                        "support_radius", "max_condition", "analysis", "grid", "materials", "bodies",
                                        "boundary_conditions", "output", "probes", "sources", "sinks", "contact_pairs",
-                                       "obstacles", NULL};
+                                       "obstacles", "loads", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
-                                            "gravity_ramp_time", "damping", "newton", "load_steps",
+                                            "gravity_ramp_time", "damping", "flip", "newton", "load_steps",
                                             "density_update", "strength_reduction", "fbar", "max_steps", NULL};
 static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "displacement_ratio", NULL};
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
-                                          "max_step_cuts", NULL};
+                                          "max_step_cuts", "absolute_tolerance", NULL};
 static const char *const rect_keys[] = {"type", "origin", "size", "cells", "element", NULL};
 static const char *const gmsh_keys[] = {"type", "file", NULL};
 static const char *const body_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
@@ -42,6 +42,7 @@ static const char *const pair_keys[] = {"bodies", "law", "friction", "separation
 static const char *const obstacle_keys[] = {"name", "type", "points", "center", "radius", "material_side", "law",
                                             "friction", "penalty_factor", "velocity", NULL};
 static const char *const timefn_keys[] = {"value", "ramp_time", "table", NULL};
+static const char *const load_keys[] = {"name", "nearest", "min", "max", "force", NULL};
 
 static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_TOP] = {"", NULL, top_keys},
@@ -70,6 +71,7 @@ static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_CONTACT_PAIR] = {"contact_pairs[]", NULL, pair_keys},
     [PM_KEYS_OBSTACLE] = {"obstacles[]", NULL, obstacle_keys},
     [PM_KEYS_TIMEFN] = {"obstacles[].velocity[]", NULL, timefn_keys},
+    [PM_KEYS_LOAD] = {"loads[]", NULL, load_keys},
 };
 
 const char *const *pm_case_keys(pm_case_keyset_id id) { return table[id].keys; }

@@ -46,6 +46,7 @@ typedef struct pm_run_summary {
     size_t particles_removed;       /**< particles the sinks removed */
     double mass_released;           /**< their mass */
     double mass_removed;
+    const char *interrupted;        /**< "SIGINT" or "SIGTERM" when a signal stopped the run, else NULL */
 } pm_run_summary;
 
 /**

@@ -62,6 +62,8 @@ int pm_run_json_write(const char *path, const pm_run_summary *s, const pm_probe_
         bad |= put(root, "frames", json_integer((json_int_t)frames));
         bad |= put(root, "exit_status", json_integer(s->exit_status));
         bad |= put(root, "message", str(s->message));
+        if (s->interrupted)
+            bad |= put(root, "interrupted", str(s->interrupted));
         json_t *w = json_array();
         for (size_t k = 0; w && k < s->n_warnings; k++)
             bad |= json_array_append_new(w, str(s->warnings[k])) != 0;

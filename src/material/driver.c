@@ -9,7 +9,43 @@
 #include "material/principal.h"
 #include "pmech/error.h"
 
+#include <math.h>
 #include <string.h>
+
+/*
+ * A step the model could not take, or took to a stress or state that is not finite: the driver stops
+ * (exit 1) rather than write inf/NaN rows, and says what it fed the model: the stress at the start,
+ * the strain increment (engineering shear) and the elastic trial stress from them.
+ */
+static int step_failed(const pm_material *m, int k, const double e[4], const double s[6], const double *s1,
+                       int update_failed)
+{
+    const double lam = m->K - 2.0 * m->G / 3.0, tr = e[0] + e[1] + e[2];
+    double trial[4];
+    for (int i = 0; i < 3; i++)
+        trial[i] = s[i] + lam * tr + 2.0 * m->G * e[i];
+    trial[3] = s[3] + m->G * e[3];
+    char what[256];
+    if (update_failed)
+        snprintf(what, sizeof what, "model '%s' could not update the stress (its update found no admissible stress)",
+                 m->ops->name);
+    else
+        snprintf(what, sizeof what, "model '%s' returned a stress that is not finite (%g, %g, %g, %g) or a "
+                 "non-finite state", m->ops->name, s1[0], s1[1], s1[2], s1[3]);
+    return pm_error_set(PM_ESIM,
+                        "driver step %d: %s; start stress (sxx, syy, szz, sxy) = (%g, %g, %g, %g), strain increment "
+                        "(exx, eyy, ezz, gxy) = (%g, %g, %g, %g), elastic trial stress = (%g, %g, %g, %g)",
+                        k, what, s[0], s[1], s[2], s[3], e[0], e[1], e[2], e[3], trial[0], trial[1], trial[2],
+                        trial[3]);
+}
+
+static int all_finite(const double *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
 
 /* F_incr with mid-step strain deps (Voigt, engineering shears) and no spin. */
 static void f_from_strain(const double deps[6], double F[9])
@@ -128,6 +164,7 @@ int pm_driver_run_cb(const pm_driver *d, FILE *csv,
     for (int k = 1; k <= n; k++) {
         double Fi[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, s1[6], st1[PM_MAT_MAX_STATE], D[36];
         int rc = PM_OK;
+        double de_k[6] = {0}; /* this step's strain increment, for a message */
         switch (d->path) {
         case PM_PATH_OEDOMETER:
         case PM_PATH_TRIAXIAL: {
@@ -137,6 +174,7 @@ int pm_driver_run_cb(const pm_driver *d, FILE *csv,
             const double fy = ly1 / ly0;
             double de[6] = {0, 2.0 * (fy - 1.0) / (fy + 1.0), 0, 0, 0, 0};
             if (d->path == PM_PATH_OEDOMETER) {
+                memcpy(de_k, de, sizeof de);
                 f_from_strain(de, Fi);
                 rc = step_update(m, Fi, F, dt, s, state, s1, st1, NULL);
                 break;
@@ -146,6 +184,7 @@ int pm_driver_run_cb(const pm_driver *d, FILE *csv,
             const double scale = fabs(pc) + fabs(s[0]) + fabs(s[1]) + fabs(s[2]) + m->E + m->K;
             int conv = 0;
             for (int it = 0; it < 60 && rc == PM_OK; it++) {
+                memcpy(de_k, de, sizeof de);
                 f_from_strain(de, Fi);
                 rc = step_update(m, Fi, F, dt, s, state, s1, st1, D);
                 if (rc)
@@ -176,12 +215,14 @@ int pm_driver_run_cb(const pm_driver *d, FILE *csv,
         case PM_PATH_SIMPLE_SHEAR: {
             const double dg = d->shear_strain / n;
             Fi[1] = dg; /* F = [[1, g], [0, 1]]: F_incr = F_k F_{k-1}^-1 */
+            de_k[3] = dg;
             rc = step_update(m, Fi, F, dt, s, state, s1, st1, NULL);
             break;
         }
         case PM_PATH_INCREMENTS: {
             const double *inc = d->increments + 4 * (size_t)(k - 1);
             const double de[6] = {inc[0], inc[1], inc[2], inc[3], 0, 0};
+            memcpy(de_k, de, sizeof de);
             f_from_strain(de, Fi);
             rc = step_update(m, Fi, F, dt, s, state, s1, st1, NULL);
             break;
@@ -189,9 +230,12 @@ int pm_driver_run_cb(const pm_driver *d, FILE *csv,
         default:
             return pm_error_set(PM_EINPUT, "path.type: unknown path %d", (int)d->path);
         }
+        if (rc == PM_ESIM)
+            return step_failed(m, k, de_k, s, s1, 1);
         if (rc != PM_OK)
-            return pm_error_set(PM_ESIM, "driver step %d: the stress update of model '%s' failed", k,
-                                m->ops->name);
+            return rc;
+        if (!all_finite(s1, 6) || !all_finite(st1, (int)m->ops->n_state))
+            return step_failed(m, k, de_k, s, s1, 0);
         double Fn[9];
         matmul3(Fi, F, Fn);
         memcpy(F, Fn, sizeof F);

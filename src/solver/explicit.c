@@ -8,6 +8,7 @@
 #include "flow.h"
 #include "meshfree_internal.h"
 #include "contact/contact.h"
+#include "solver/loads.h"
 
 #include "pmech/error.h"
 
@@ -38,6 +39,7 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
     long bad = pm_xp_p2g(s, 0.0, 1, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
+    pm_check(pm_loads_apply(s, s->t));
     pm_xp_grid_update(s, dt);
     pm_nodal *nd = &s->nd;
     if (musl) {
@@ -68,6 +70,7 @@ static int step_usf(pm_sim *s, double dt)
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
+    pm_check(pm_loads_apply(s, s->t));
     pm_xp_grid_update(s, dt);
     pm_xp_g2p_usf(s, dt);
     return PM_OK;
@@ -93,6 +96,7 @@ static int step_newmark_pc(pm_sim *s, double dt)
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
+    pm_check(pm_loads_apply(s, s->t + dt));
     pm_xp_grid_newmark(s, dt, gamma);
     pm_xp_g2p_newmark(s, dt, gamma);
     return PM_OK;

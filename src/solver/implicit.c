@@ -64,6 +64,29 @@ static double relative_residual(const pm_implicit_ws *w)
     return isfinite(r) ? r : INFINITY;
 }
 
+/* The strain whose nodal force sets the absolute tolerance: far below any strain a result depends on,
+ * so that the absolute test never judges a loaded step (the relative one does), only steps whose
+ * forces are all round-off. */
+#define PM_CHARACTERISTIC_STRAIN 1e-6
+
+double pm_implicit_characteristic_force(const pm_sim *s)
+{
+    double modulus = 0;
+    for (size_t k = 0; k < s->c->n_materials; k++) {
+        const pm_material *m = &s->c->materials[k];
+        const double c = pm_material_elastic_wave_speed(m, NULL, m->density);
+        modulus = fmax(modulus, m->density * c * c);
+    }
+    return PM_CHARACTERISTIC_STRAIN * modulus * s->grid.h_min;
+}
+
+/* Converged by the relative test, or by the absolute one: a body moving freely has no force at all,
+ * so its residual is round-off over round-off and the relative test alone never passes. */
+static int converged(const pm_implicit_ws *w, double r, double tolerance, double abs_tol)
+{
+    return r <= tolerance || norm2(w->res, w->n_dof) <= abs_tol;
+}
+
 /* Evaluate at the current increments; a failed point counts as an infinite residual. */
 static double evaluate_rel(pm_sim *s, pm_implicit_ws *w)
 {
@@ -115,6 +138,8 @@ static void restore_base(pm_implicit_ws *w)
 static int attempt(pm_sim *s, pm_implicit_ws *w, FILE *log, pm_implicit_report *rep)
 {
     const pm_newton_opts *o = &s->c->analysis.newton;
+    const double abs_tol =
+        o->absolute_tolerance > 0 ? o->absolute_tolerance : o->tolerance * pm_implicit_characteristic_force(s);
     const double w0 = pm_wall_seconds();
     int rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc)
@@ -135,7 +160,7 @@ static int attempt(pm_sim *s, pm_implicit_ws *w, FILE *log, pm_implicit_report *
         fprintf(log, "step %ld t %.6g dt %.4g: %d unknowns, %d entries\n  iter 0 residual %.3e\n", s->step + 1,
                 s->t, w->dt, w->n_dof, w->K.nnz, r);
     for (int it = 1; it <= o->max_iterations; it++) {
-        if (r <= o->tolerance)
+        if (converged(w, r, o->tolerance, abs_tol))
             return 0;
         int src = solve(w, rep, log);
         if (src == PM_ESIM)
@@ -185,6 +210,8 @@ static int attempt(pm_sim *s, pm_implicit_ws *w, FILE *log, pm_implicit_report *
         if (log)
             fprintf(log, "  iter %d residual %.3e  du %.3e%s\n", it, r_new, rel_du,
                     step < 1 ? "  (line search)" : "");
+        if (isfinite(r_new) && converged(w, INFINITY, 0, abs_tol))
+            return 0;
         if (!isfinite(r_new) || r_new > PM_NEWTON_DIVERGED || !(r_new < r))
             return 1; /* diverging, or no correction helps: cut the step */
         r = r_new;

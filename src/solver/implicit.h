@@ -64,6 +64,13 @@ void pm_implicit_reaction(const pm_sim *s, size_t bc, double R[2]);
 /** @brief Free the implicit solver's workspace of @p s (called by pm_sim_destroy()). */
 void pm_implicit_free(pm_sim *s);
 
+/**
+ * @brief The force that sets the default absolute Newton tolerance: 1e-6 times the largest P-wave
+ *        modulus (density c^2) of the case's materials times the smallest cell size, i.e. the nodal force
+ *        of a strain of 1e-6 across a cell (per unit thickness in plane analyses).
+ */
+double pm_implicit_characteristic_force(const pm_sim *s);
+
 #ifdef __cplusplus
 }
 #endif

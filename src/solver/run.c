@@ -5,6 +5,7 @@
 #include "solver/run_warnings.h"
 #include "solver/thread_governor.h"
 #include "flow.h"
+#include "forces_log.h"
 #include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
@@ -13,6 +14,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -126,6 +128,11 @@ static int write_energy(pm_output *out, const pm_sim *s)
     return pm_output_energy(out, s->t, ke, se, ge);
 }
 
+static const char *signal_name(int sig)
+{
+    return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+}
+
 static double max_displacement(const pm_particles *p)
 {
     double m2 = 0;
@@ -190,6 +197,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_flow_log flog = {0};
     if (!rc && out)
         rc = pm_flow_log_open(&flog, s, dir);
+    pm_forces_log forces = {0};
+    if (!rc && out)
+        rc = pm_forces_log_open(&forces, s, dir);
     if (!rc && out && s->mb)
         rc = pm_multibody_log_open(s->mb, c, dir);
     double particle_steps = 0; /* the count changes with sources and sinks */
@@ -218,6 +228,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             pm_multibody_log_step(s->mb, dt);
         if (out && (rc = pm_flow_log_step(&flog, s)) != PM_OK)
             break;
+        if (out && (rc = pm_forces_log_step(&forces, s, s->t >= end - eps)) != PM_OK)
+            break;
         dt_min = fmin(dt_min, dt);
         dt_max = fmax(dt_max, dt);
         pm_run_warnings_step(&warn, s->step, s->t, dt);
@@ -242,6 +254,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
                 break;
         }
         pm_progress_update(&pg, s->step, s->t, loop_seconds);
+        if (o->interrupt && *o->interrupt) {
+            rc = pm_error_set(PM_EINTR, "interrupted by %s after step %ld (t = %.6g s)", signal_name(*o->interrupt),
+                              s->step, s->t);
+            break;
+        }
     }
     if (!rc && out && last_frame_t < s->t) {
         rc = write_frame(out, s, dir, &frame);
@@ -270,6 +287,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     int rc_log = pm_flow_log_close(&flog);
     if (!rc && rc_log)
         rc = rc_log;
+    rc_log = pm_forces_log_close(&forces);
+    if (!rc && rc_log)
+        rc = rc_log;
     rc_log = pm_multibody_log_close(s->mb);
     if (!rc && rc_log)
         rc = rc_log;
@@ -295,7 +315,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .particles_removed = ft.removed,
         .mass_released = ft.released_mass,
         .mass_removed = ft.removed_mass,
-        .exit_status = pm_exit_code(rc),
+        .exit_status = rc == PM_EINTR ? 128 + (int)*o->interrupt : pm_exit_code(rc),
+        .interrupted = rc == PM_EINTR ? signal_name(*o->interrupt) : NULL,
         .message = rc ? pm_error_message() : "",
         .threads = pm_thread_gov_main_count(&gov),
         .implicit = c->analysis.type != PM_ANALYSIS_EXPLICIT,

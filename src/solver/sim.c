@@ -7,6 +7,7 @@
 
 #include "boundary.h"
 #include "contact/contact.h"
+#include "solver/loads.h"
 #include "contact/multibody.h"
 #include "flow.h"
 #include "core/seed.h"
@@ -186,7 +187,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         rc = PM_EINPUT;
         goto fail;
     }
-    if ((rc = pm_flow_start(s)) != 0)
+    if ((rc = pm_flow_start(s)) != 0 || (rc = pm_loads_create(s, &s->loads)) != 0)
         goto fail;
     s->dt_next = c->analysis.dt > 0 ? c->analysis.dt : pm_sim_stable_dt(s);
     *out = s;
@@ -217,6 +218,7 @@ void pm_sim_destroy(pm_sim *s)
     pm_contact_destroy(s->contact);
     pm_multibody_destroy(s->mb);
     pm_flow_destroy(s->flow);
+    pm_loads_destroy(s->loads);
     pm_grid_free(&s->grid);
     free(s);
 }

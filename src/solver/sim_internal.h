@@ -84,6 +84,7 @@ struct pm_sim {
     int n_blocks;        /**< colour scatter: blocks in use (0: not cut yet) */
     int blocks_ok;       /**< colour scatter: no two same-colour blocks share a node at this step */
     struct pm_flow *flow; /**< sources and sinks (solver/flow.h; NULL when the case has none) */
+    struct pm_loads *loads; /**< forces on particle sets (solver/loads.h; NULL when the case has none) */
     struct pm_multibody *mb; /**< body fields of contact_pairs (contact/multibody.h; NULL: one field) */
 };
 

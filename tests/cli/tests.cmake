@@ -6,3 +6,7 @@ add_test(NAME cli.refusals
          COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/refusals_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
                  ${CMAKE_CURRENT_BINARY_DIR}/refusals_work)
 set_tests_properties(cli.refusals PROPERTIES LABELS cli TIMEOUT 300)
+add_test(NAME cli.signals
+         COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/signals_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
+                 ${CMAKE_CURRENT_BINARY_DIR}/signals_work)
+set_tests_properties(cli.signals PROPERTIES LABELS cli TIMEOUT 300)

@@ -29,7 +29,7 @@ set_tests_properties(io.vtk_readback_detects_wrong_count PROPERTIES
 # 0.0379 s). VTK must read every frame, the empty ones too.
 set(PMECH_IO_FLOW ${CMAKE_CURRENT_BINARY_DIR}/io_flow)
 add_test(NAME io.write_flow
-         COMMAND $<TARGET_FILE:pmech_cli> run ${CMAKE_CURRENT_LIST_DIR}/flow_case.json -o ${PMECH_IO_FLOW} --quiet)
+         COMMAND $<TARGET_FILE:pmech_cli> run ${CMAKE_CURRENT_LIST_DIR}/flow_case.json -o ${PMECH_IO_FLOW} --overwrite --quiet)
 set_tests_properties(io.write_flow PROPERTIES FIXTURES_SETUP io_flow LABELS io TIMEOUT 60)
 add_test(NAME io.vtk_readback_flow
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/vtk_readback.py ${PMECH_IO_FLOW} 0,0,32,40,32,32)

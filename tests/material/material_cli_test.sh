@@ -29,6 +29,21 @@ expect_exit 2 "no driver file" "$PMECH" material
 expect_exit 2 "missing driver file" "$PMECH" material does-not-exist.json
 expect_exit 2 "bad option" "$PMECH" material "$TRI" --frob
 
+# a step the model cannot take: exit 1 naming the step, the model and the trial stress; the rows written
+# before it are complete and finite (no inf/NaN rows)
+cat > blowup.json <<'EOF'
+{ "material": { "model": "mohr_coulomb", "density": 2000, "youngs_modulus": 2e7, "poisson_ratio": 0.3,
+                "cohesion": 1e4, "friction_angle": 30, "dilatancy_angle": 0 },
+  "initial_stress": [-1e5, -1e5, -1e5, 0],
+  "path": { "type": "strain_increments", "increments": [[0, -0.001, 0, 0], [1e300, 0, 0, 1e300], [0, 0, 0, 0]] } }
+EOF
+expect_exit 1 "a strain increment of 1e300" "$PMECH" material blowup.json -o blowup.csv
+check "names the step, the model and the trial stress" sh -c 'grep -q "driver step 2" err.txt && grep -q "mohr_coulomb" err.txt && grep -q "elastic trial stress = (2.69231e+307" err.txt'
+check "rows before it are finite, none after" python3 -c "
+import csv, math, sys
+rows = list(csv.DictReader(open('blowup.csv')))
+sys.exit(0 if len(rows) == 2 and all(math.isfinite(float(v)) for r in rows for v in r.values()) else 1)"
+
 # invalid parameters: pmech material
 bad_driver() { # description, sed expression, key expected in the message
   sed "$2" "$TRI" > bad.json

@@ -391,6 +391,11 @@ static void obstacles_are_read_and_checked(void **st)
            " \"velocity\": [0, { \"table\": [[0, 0], [2, 1], [1, 3]] }] } ],\n  \"output\": {",
            "obstacles[0].velocity[1].table[2]", "not after");
     EXPECT(at, "  \"obstacles\": [ { \"type\": \"square\" } ],\n  \"output\": {", "obstacles[0].type", "square");
+    /* loads[]: one set, a force per component */
+    EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"min\": [0, 0], \"max\": [1, 1], \"force\": [0, 1] } ],\n"
+           "  \"output\": {", "loads[0]", "either \"nearest\"");
+    EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"force\": [0, { \"value\": 1 }] } ],\n  \"output\": {",
+           "loads[0].force[1].ramp_time", "missing");
 }
 
 int main(void)

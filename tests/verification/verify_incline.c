@@ -7,9 +7,16 @@
  * more: at 35 degrees frictionless is +76 %). At 10 degrees, below the friction angle, it must stay put:
  * its travel along the slope below 1 % of the frictionless g sin(theta) t^2 / 2. Both laws (nodal and
  * penalty) run the 35 degree case.
+ * The slope's own force output (the laws' impulses summed over its nodes, averaged over the second
+ * half of the run, as forces.csv does) must match the statics of the rigid block within 2 %: normal
+ * W cos(theta), tangential mu W cos(theta) while sliding and W sin(theta) while stuck (W the weight per
+ * unit thickness). The penalty law's forces within 5 %: its contact is an undamped spring, and the
+ * block's bounce on it (a few per cent of the weight, period of milliseconds) leaves part of a period in
+ * a 0.1 s mean.
  */
 #include "verify_util.h"
 
+#include "contact/contact.h"
 #include "pmech/error.h"
 
 #include <math.h>
@@ -18,6 +25,8 @@
 #include <string.h>
 
 static const double G = 9.81, MU = 0.3, T_END = 0.2;
+/* weight of the 0.2 m x 0.06 m block of density 1000 per unit thickness */
+static const double W = 1000 * 0.2 * 0.06 * 9.81;
 
 /* The case: the slope from (0, y0) down to the right, the block's bottom on it from s = 0.15 to 0.35. */
 static void make_case(double theta_deg, const char *law, pm_case *c)
@@ -51,8 +60,9 @@ static void make_case(double theta_deg, const char *law, pm_case *c)
     }
 }
 
-/* Run to T_END: the mean velocity along the slope and the travel of the centre of mass along it. */
-static int run(double theta_deg, const char *law, double *v_along, double *travel, double *secs)
+/* Run to T_END: the mean velocity along the slope, the travel of the centre of mass along it, and the
+ * slope's mean normal and tangential force on the block over the second half. */
+static int run(double theta_deg, const char *law, double *v_along, double *travel, double force[2], double *secs)
 {
     pm_case c;
     make_case(theta_deg, law, &c);
@@ -61,8 +71,14 @@ static int run(double theta_deg, const char *law, double *v_along, double *trave
     pm_sim *s = vu_sim(&c, 1);
     double v[2], x0[2], x[2];
     vu_body_mean(s, 0, v, x0);
-    int ok = 1;
+    int ok = 1, reset = 0;
+    double t_reset = 0;
     while (ok && s->t < T_END - 1e-12) {
+        if (!reset && s->t >= 0.5 * T_END) {
+            memset(&s->contact->surface[0].impulse, 0, sizeof s->contact->surface[0].impulse);
+            t_reset = s->t;
+            reset = 1;
+        }
         double dt = vu_dt(s);
         if (s->t + dt > T_END)
             dt = T_END - s->t;
@@ -74,6 +90,9 @@ static int run(double theta_deg, const char *law, double *v_along, double *trave
     vu_body_mean(s, 0, v, x);
     *v_along = v[0] * e[0] + v[1] * e[1];
     *travel = (x[0] - x0[0]) * e[0] + (x[1] - x0[1]) * e[1];
+    const pm_contact_force *J = &s->contact->surface[0].impulse;
+    force[0] = J->normal / (s->t - t_reset);
+    force[1] = hypot(J->tangent[0], J->tangent[1]) / (s->t - t_reset);
     *secs = vu_now() - t0;
     pm_sim_destroy(s);
     pm_case_free(&c);
@@ -87,17 +106,28 @@ int main(int argc, char **argv)
     const struct { double deg; const char *law; } slides[] = {{25, "nodal"}, {35, "nodal"}, {35, "penalty"}};
     for (size_t k = 0; k < sizeof slides / sizeof slides[0]; k++) {
         const double th = slides[k].deg * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * T_END;
-        double v, u, secs;
-        ok &= run(slides[k].deg, slides[k].law, &v, &u, &secs);
-        char q[96];
+        double v, u, f[2], secs;
+        ok &= run(slides[k].deg, slides[k].law, &v, &u, f, &secs);
+        char q[112];
         snprintf(q, sizeof q, "%g deg, mu 0.3, %s law: velocity along the slope at 0.2 s (m/s)", slides[k].deg,
                  slides[k].law);
         ok &= vu_report("incline", q, v, ref, (v - ref) / ref, 0.02, secs);
+        const double fn = W * cos(th), tol_f = strcmp(slides[k].law, "penalty") ? 0.02 : 0.05;
+        snprintf(q, sizeof q, "%g deg, %s law: slope's normal force (N/m), mean over 0.1-0.2 s", slides[k].deg,
+                 slides[k].law);
+        ok &= vu_report("incline", q, f[0], fn, (f[0] - fn) / fn, tol_f, secs);
+        snprintf(q, sizeof q, "%g deg, %s law: slope's friction force (N/m), mean over 0.1-0.2 s", slides[k].deg,
+                 slides[k].law);
+        ok &= vu_report("incline", q, f[1], MU * fn, (f[1] - MU * fn) / (MU * fn), tol_f, secs);
     }
     const double th = 10.0 * M_PI / 180.0, free_dist = 0.5 * G * sin(th) * T_END * T_END;
-    double v, u, secs;
-    ok &= run(10.0, "nodal", &v, &u, &secs);
+    double v, u, f[2], secs;
+    ok &= run(10.0, "nodal", &v, &u, f, &secs);
     ok &= vu_report("incline", "10 deg, mu 0.3 (sticks): travel / frictionless travel", u / free_dist, 0.0,
                     u / free_dist, 0.01, secs);
+    ok &= vu_report("incline", "10 deg: slope's normal force (N/m), mean over 0.1-0.2 s", f[0], W * cos(th),
+                    f[0] / (W * cos(th)) - 1, 0.02, secs);
+    ok &= vu_report("incline", "10 deg: slope's friction force (N/m), mean over 0.1-0.2 s", f[1], W * sin(th),
+                    f[1] / (W * sin(th)) - 1, 0.02, secs);
     return ok ? 0 : 1;
 }
