@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 #include "pmech/material.h"
+#include "pmech/timefn.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -62,7 +63,24 @@ typedef struct pm_case_body {
     pm_stress0_type stress0;
     double k0, surface_y;         /**< geostatic */
     double stress0_value[4];      /**< constant [sxx, syy, szz, sxy] */
+    char contact_group[PM_NAME_MAX]; /**< the body field it joins where bodies meet (default: its name) */
 } pm_case_body;
+
+/** How two contact groups act on each other where they meet on the grid (contact_pairs[].law). */
+typedef enum pm_pair_law {
+    PM_PAIR_NO_SLIP = 0,      /**< one velocity for both, as if a single field (the default) */
+    PM_PAIR_FRICTIONLESS = 1, /**< the approaching normal velocity is removed, sliding is free */
+    PM_PAIR_COULOMB = 2       /**< as frictionless, and the sliding speed is reduced by mu times that change */
+} pm_pair_law;
+
+/** contact_pairs[]: the law between two contact groups (docs/input.md). */
+typedef struct pm_case_contact_pair {
+    char group[2][PM_NAME_MAX];   /**< the two contact groups (a body's contact_group or name) */
+    pm_pair_law law;
+    double friction;              /**< Coulomb coefficient (coulomb only) */
+    int extent_check;             /**< 1: contact only where the particles' domains meet (the default);
+                                       0: wherever the fields approach each other within a cell */
+} pm_case_contact_pair;
 
 /** sources[]: material released during a run, a body's worth at a time (docs/input.md, `sources[]`). */
 typedef struct pm_case_source {
@@ -100,8 +118,44 @@ typedef struct pm_case_bc {
     unsigned dirs;                /**< fixed: bit 0 = x, bit 1 = y; velocity: components given */
     double value[2];              /**< velocity values (for the components in dirs) */
     double coefficient;           /**< friction coefficient (>= 0) */
-    double until;                 /**< velocity: prescribed until this time, then held (INFINITY or <= 0: always) */
+    double until;                 /**< velocity: prescribed until this time, then held; fixed: released at this time (INFINITY or <= 0: never) */
 } pm_case_bc;
+
+/** obstacles[].type */
+typedef enum pm_obstacle_type {
+    PM_OBSTACLE_POLYLINE = 0,     /**< an open chain of segments; the material on one side of it */
+    PM_OBSTACLE_POLYGON = 1,      /**< a closed polygon; the material outside it */
+    PM_OBSTACLE_CIRCLE = 2        /**< a disk; the material outside it */
+} pm_obstacle_type;
+
+/** obstacles[].law */
+typedef enum pm_obstacle_law {
+    PM_OBSTACLE_NODAL = 0,        /**< Bardenhagen's nodal Coulomb law (velocity projection) */
+    PM_OBSTACLE_PENALTY = 1       /**< penalty-regularised Coulomb law (force from the penetration) */
+} pm_obstacle_law;
+
+/** obstacles[]: a rigid body placed independently of the grid, fixed or moving. */
+typedef struct pm_case_obstacle {
+    char name[PM_NAME_MAX];
+    pm_obstacle_type type;
+    size_t n_points;              /**< polyline (>= 2), polygon (>= 3): points at t = 0 */
+    double *points;               /**< 2 per point */
+    double center[2], radius;     /**< circle at t = 0 */
+    int material_right;           /**< polyline: the material lies right of its direction (default left) */
+    pm_timefn velocity[2];        /**< rigid translation velocity per component */
+    pm_obstacle_law law;
+    double friction;              /**< Coulomb coefficient >= 0; INFINITY for "no_slip" */
+    double penalty_factor;        /**< penalty law: multiplies the default stiffness (default 1) */
+} pm_case_obstacle;
+
+/** loads[]: a force on a set of particles, shared by their initial volumes. */
+typedef struct pm_case_particle_load {
+    char name[PM_NAME_MAX];
+    int nearest;                  /**< 1: the particle nearest to point; 0: the particles in [min, max] */
+    double point[2];
+    double min[2], max[2];
+    pm_timefn force[2];           /**< total force per component (N per unit thickness; per radian axisymmetric) */
+} pm_case_particle_load;
 
 /** probes[] */
 typedef struct pm_case_probe {
@@ -153,6 +207,7 @@ typedef struct pm_case {
         double gravity[2];
         double gravity_ramp_time;
         double damping;
+        double pic;               /**< MUSL: PIC share of the particle velocity update, 1 - the key flip (0: FLIP) */
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
@@ -187,6 +242,12 @@ typedef struct pm_case {
     pm_case_source *sources;      /**< particles of source k carry body index n_bodies + k */
     size_t n_sinks;
     pm_case_sink *sinks;
+    size_t n_contact_pairs;
+    pm_case_contact_pair *contact_pairs; /**< body-body contact laws; none: one field, bodies stick */
+    size_t n_obstacles;
+    pm_case_obstacle *obstacles;
+    size_t n_loads;
+    pm_case_particle_load *loads;
     void *doc;                    /**< the JSON document the case was read from (private; pm_case_set edits it) */
 } pm_case;
 

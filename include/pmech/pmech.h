@@ -15,5 +15,6 @@
 #include "pmech/render.h"
 #include "pmech/sim.h"
 #include "pmech/strength_reduction.h"
+#include "pmech/timefn.h"
 
 #endif

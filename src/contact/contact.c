@@ -14,6 +14,14 @@ int pm_contact_new(size_t n_nodes, pm_contact **out)
     if (!*out)
         return pm_error_set(PM_ENOMEM, "out of memory for the contact surfaces");
     (*out)->n_nodes = n_nodes;
+    (*out)->slot = malloc((n_nodes ? n_nodes : 1) * sizeof *(*out)->slot);
+    if (!(*out)->slot) {
+        free(*out);
+        *out = NULL;
+        return pm_error_set(PM_ENOMEM, "out of memory for the contact surfaces");
+    }
+    for (size_t i = 0; i < n_nodes; i++)
+        (*out)->slot[i] = -1;
     return PM_OK;
 }
 
@@ -23,6 +31,8 @@ void pm_contact_destroy(pm_contact *ct)
         return;
     free(ct->surface);
     free(ct->node);
+    free(ct->points);
+    free(ct->slot);
     free(ct);
 }
 
@@ -41,6 +51,7 @@ static int add_surface(pm_contact *ct, size_t more_nodes, pm_contact_surface **o
     }
     *out = &ct->surface[ct->n_surfaces];
     memset(*out, 0, sizeof **out);
+    (*out)->bc = (*out)->obstacle = -1;
     return (int)ct->n_surfaces++;
 }
 
@@ -82,6 +93,7 @@ int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double nor
     if (k < 0)
         return k;
     sf->kind = PM_CONTACT_WALL;
+    sf->origin[axis] = value;
     sf->law = law;
     sf->mu = mu;
     sf->bc = bc;
@@ -127,6 +139,9 @@ static int node_set_surfaces(pm_contact *ct, const pm_case *c, pm_grid *g)
                                               PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
         if (k < 0)
             return k;
+        /* its plane, for the gaps of the material from it: through a node of the set */
+        for (int d = 0; set->n && d < PM_DIM; d++)
+            ct->surface[k].origin[d] = g->x[PM_DIM * set->nodes[0] + d];
     }
     return PM_OK;
 }
@@ -175,12 +190,84 @@ static int wall_surfaces(pm_contact *ct, const pm_case *c, const pm_grid *frame)
     return PM_OK;
 }
 
+
+/* The largest P-wave speed of the case's materials at their reference state (penalty stiffness). */
+static double wave_speed(const pm_case *c)
+{
+    double w = 0.0;
+    for (size_t m = 0; m < c->n_materials; m++) {
+        const double cm = pm_material_elastic_wave_speed(&c->materials[m], NULL, c->materials[m].density);
+        if (isfinite(cm) && cm > w)
+            w = cm;
+    }
+    return w;
+}
+
+int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double wave, double h)
+{
+    const pm_case_obstacle *ob = &c->obstacles[k];
+    const size_t np = ob->type == PM_OBSTACLE_CIRCLE ? 0 : ob->n_points;
+    double *pts = realloc(ct->points, PM_DIM * (ct->n_points + np + 1) * sizeof *pts);
+    if (!pts)
+        return pm_error_set(PM_ENOMEM, "out of memory for the obstacles");
+    ct->points = pts;
+    pm_contact_surface *sf = NULL;
+    const int i = add_surface(ct, ct->n_nodes, &sf); /* room for every node: the list never grows in a step */
+    if (i < 0)
+        return i;
+    sf->obstacle = (long)k;
+    sf->law = ob->law == PM_OBSTACLE_PENALTY ? PM_CONTACT_LAW_PENALTY_COULOMB : PM_CONTACT_LAW_NODAL_COULOMB;
+    sf->mu = ob->friction;
+    sf->axis = -1;
+    sf->motion = ob->velocity;
+    sf->stiffness = ob->penalty_factor * (wave / h) * (wave / h);
+    if (ob->type == PM_OBSTACLE_CIRCLE) {
+        sf->kind = PM_CONTACT_CIRCLE;
+        for (int d = 0; d < PM_DIM; d++)
+            sf->origin[d] = ob->center[d];
+        sf->radius = ob->radius;
+        return i;
+    }
+    sf->kind = ob->type == PM_OBSTACLE_POLYGON ? PM_CONTACT_POLYGON : PM_CONTACT_POLYLINE;
+    sf->first_point = ct->n_points;
+    sf->n_points = np;
+    memcpy(ct->points + PM_DIM * ct->n_points, ob->points, PM_DIM * np * sizeof *pts);
+    ct->n_points += np;
+    if (sf->kind == PM_CONTACT_POLYLINE) {
+        sf->side = ob->material_right ? -1.0 : 1.0;
+    } else {
+        double area2 = 0.0; /* twice the signed area: positive when counter-clockwise */
+        for (size_t q = 0; q < np; q++) {
+            const double *a = ob->points + PM_DIM * q, *b = ob->points + PM_DIM * ((q + 1) % np);
+            area2 += a[0] * b[1] - a[1] * b[0];
+        }
+        sf->side = area2 > 0 ? -1.0 : 1.0;
+    }
+    return i;
+}
+
+static int obstacle_surfaces(pm_contact *ct, const pm_case *c, const pm_grid *frame)
+{
+    const double wave = wave_speed(c), h = frame->h_min;
+    for (size_t k = 0; k < c->n_obstacles; k++) {
+        const int i = pm_contact_add_obstacle(ct, c, k, wave, h);
+        if (i < 0)
+            return i;
+    }
+    return PM_OK;
+}
+
 int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_contact **out)
 {
     *out = NULL;
     pm_contact *ct;
     pm_check(pm_contact_new(g->n_nodes, &ct));
-    const int rc = c->method == PM_METHOD_MPM ? node_set_surfaces(ct, c, g) : wall_surfaces(ct, c, frame);
+    /* a node or particle this close to a surface may take part: two cells cover the widest support of
+     * the grid kinds (linear 1, uGIMP 1 + half a particle, B-spline 1.5 cells) */
+    ct->reach = 2.0 * frame->h_min;
+    int rc = c->method == PM_METHOD_MPM ? node_set_surfaces(ct, c, g) : wall_surfaces(ct, c, frame);
+    if (!rc)
+        rc = obstacle_surfaces(ct, c, frame);
     if (rc) {
         pm_contact_destroy(ct);
         return rc;
@@ -188,36 +275,6 @@ int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_con
     pm_contact_detect(ct, g, 0.0);
     *out = ct;
     return PM_OK;
-}
-
-/* The nodes touching or past a wall, where friction acts in this step. */
-static void detect_wall(pm_contact *ct, int32_t k, const pm_grid *g)
-{
-    const pm_contact_surface *sf = &ct->surface[k];
-    const double tol = 1e-6 * g->h_min;
-    const double sgn = sf->normal[sf->axis] > 0 ? 1.0 : -1.0;
-    for (size_t I = 0; I < g->n_nodes && ct->n_node < ct->cap; I++) {
-        const double gap = sgn * (sf->value - g->x[PM_DIM * I + sf->axis]);
-        if (gap > tol)
-            continue;
-        pm_contact_node *cn = &ct->node[ct->n_node++];
-        cn->node = (int32_t)I;
-        cn->surface = k;
-        for (int d = 0; d < PM_DIM; d++)
-            cn->normal[d] = sf->axis == d ? sgn : 0.0;
-        cn->mu = sf->mu;
-    }
-}
-
-void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
-{
-    (void)t; /* the surfaces are at rest; moving obstacles will be placed at t first */
-    if (!ct)
-        return;
-    ct->n_node = ct->n_fixed; /* node sets keep their nodes; they act where they carry mass */
-    for (size_t k = 0; k < ct->n_surfaces; k++)
-        if (ct->surface[k].kind == PM_CONTACT_WALL)
-            detect_wall(ct, (int32_t)k, g);
 }
 
 int pm_contact_implicit(const pm_contact *ct, const pm_case *c, struct pm_implicit_ws *w, int want_K)

@@ -7,49 +7,48 @@
  *   pm_contact_create   from the case: every `friction` condition becomes a surface; with gmm and
  *                       rkpm a `fixed` grid side that holds its normal component becomes a guard wall
  *                       as well (nodes that reach the side later are stopped there: it sticks when the
- *                       tangent is held too, slides freely otherwise).
- *   pm_contact_detect   at the start of every step (pm_sim_update_constraints): which nodes touch
- *                       which surface at time t. A node-set surface (an MPM grid side or line) keeps
- *                       the nodes it had at t = 0; a wall takes the nodes at or past it, so that moving
- *                       meshfree nodes reach it as they move. Whether a node carries material is
- *                       decided where the law acts, from that step's nodal mass.
- *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law's impulse on every
- *                       contact node that carries mass, then the node's prescribed components, then
- *                       the node's acceleration again as (v - v0) / dt_acc. The resultant force of
- *                       every surface (m dv / dt, summed over its nodes) is kept for
- *                       pm_contact_force().
+ *                       tangent is held too, slides freely otherwise); every obstacles[] entry
+ *                       becomes a polyline, polygon or circle surface (geometry.c) with its law.
+ *   pm_contact_detect   at the start of every step (pm_sim_update_constraints): the obstacles are
+ *                       moved to their place at time t (displacement = the exact integral of their
+ *                       velocity functions), and the candidate nodes found. A node-set surface (an
+ *                       MPM grid side or line) keeps the nodes it had at t = 0; the other surfaces
+ *                       take the nodes within pm_contact::reach of them, so that moving meshfree
+ *                       nodes and moving obstacles meet as they move. Each entry holds the normal
+ *                       into the surface at the node.
+ *   pm_contact_gaps     explicit steps, right after: every entry's gap from the material's actual
+ *                       surface (detect.c), so a law acts when the material reaches the surface, not
+ *                       when a node's cell holds material.
+ *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law on every contact node
+ *                       that carries mass, on its velocity relative to the surface, then the node's
+ *                       prescribed components, then the node's acceleration again as (v - v0) /
+ *                       dt_acc. The nodal law lets a node approach by its gap in the step and removes
+ *                       the rest of its approaching velocity (Bardenhagen et al. 2000), the penalty
+ *                       law pushes by stiffness x penetration x dt; both cut the slip by up to mu
+ *                       times their normal change. The resultant force of every surface (m dv / dt,
+ *                       summed over its nodes) is kept for pm_contact_force_of().
  *   pm_contact_project_normal
  *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
- *                       predictor): the approaching normal velocity only, no friction impulse (that
- *                       one has been applied to the end-of-step velocity), then the prescribed
- *                       components.
+ *                       predictor): at entries in touch (gap <= 0) of nodal-law surfaces, the
+ *                       approaching normal velocity only, no friction impulse (that one has been
+ *                       applied to the end-of-step velocity), then the prescribed components.
  *   pm_contact_implicit implicit and quasi-static steps: contact terms of the residual and tangent.
  *                       Not yet: it refuses a friction condition with the message of the run's own
- *                       check, and adds nothing for the guard walls (the fixed condition holds them).
+ *                       check (obstacles are refused when the case is loaded), and adds nothing for
+ *                       the guard walls (the fixed condition holds them).
  *
  * The nodal arrays a law works on are passed in (pm_contact_field), not taken from the simulation:
  * today that is the one field of pm_sim::nd, and a multi-body run will call the same functions once
  * per body field (an obstacle acts on every body; body-body contact will take two fields and the
  * common normal of their mass gradients).
  *
- * Room for what comes next, without another rewrite:
- *  - Moving rigid obstacles. A surface kind (pm_contact_kind) with its own detection: today node
- *    sets and straight walls; to come polylines, polygons and circles, each with a prescribed
- *    velocity v_o(t) given by a function of time (pm_contact_velocity_fn, stored per surface with
- *    its context) and a normal per segment (the outward normal of the segment nearest the node,
- *    found by pm_contact_detect at time t from the obstacle moved to its place at t). Detection
- *    writes one pm_contact_node per touching node with that segment's normal and the surface index;
- *    the law then acts on the velocity relative to the obstacle, v - v_o(t), and adds v_o back.
- *    Today's surfaces are at rest, and their arithmetic is left exactly as it was (no relative
- *    velocity is formed), so that results stay bit for bit those of before.
- *  - Laws (pm_contact_law), chosen per surface: the nodal Coulomb law of Bardenhagen et al. (2000)
- *    today; a penalty-regularised Coulomb law beside it (normal force k_n * penetration, tangential
- *    force k_t * slip capped by mu times the normal force), which also gives the implicit residual
- *    and tangent its terms. The apply loop switches on the surface's law per node.
- *  - Force output: every apply starts every surface's resultant from zero and adds m dv / dt of
- *    the law (not the prescribed components that follow it) at each of its nodes: the force the
- *    surface exerts on the material, its normal part (positive when it pushes the material away)
- *    and its tangential part. Nothing writes it out yet; pm_contact_force() reads it.
+ * State: everything is plain arrays in the object, and an obstacle's place is a function of time
+ * alone, so a checkpoint needs nothing from here beyond the case and t.
+ *
+ * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
+ * law (not the prescribed components that follow it) at each of its nodes: the force the surface
+ * exerts on the material, its normal part (positive when it pushes the material away) and its
+ * tangential part; pm_contact_force_of() reads it.
  *
  * Vectors are PM_DIM per node (v[PM_DIM * n + d]).
  */
@@ -59,6 +58,8 @@
 #include "pmech/case.h"
 #include "pmech/grid.h"
 #include "pmech/particles.h"
+#include "pmech/timefn.h"
+#include "pmech/approx.h"
 #include "solver/sim_internal.h"
 
 #include <stddef.h>
@@ -71,23 +72,25 @@ typedef enum pm_contact_law {
     /** Bardenhagen et al. (2000): the approaching normal velocity is removed and the tangential
      *  speed reduced by mu times that change, never reversed. */
     PM_CONTACT_LAW_NODAL_COULOMB = 0,
-    /** Penalty-regularised Coulomb (not yet: no surface is created with it). */
+    /** Penalty-regularised Coulomb: normal force stiffness x penetration, friction up to mu times it. */
     PM_CONTACT_LAW_PENALTY_COULOMB = 1
 } pm_contact_law;
 
 /** What a surface is and how its contact nodes are found. */
 typedef enum pm_contact_kind {
     /** A fixed set of nodes with one outward normal (MPM grid side or line); they act while they
-     *  carry mass. */
+     *  carry mass. Its geometry is the plane through its first node with that normal. */
     PM_CONTACT_NODE_SET = 0,
-    /** A straight rigid wall axis = value (gmm, rkpm): the nodes at or past it, found again by every
+    /** A straight rigid wall axis = value (gmm, rkpm): the nodes near it, found again by every
      *  pm_contact_detect(). */
-    PM_CONTACT_WALL = 1
-    /* to come: PM_CONTACT_POLYLINE, PM_CONTACT_POLYGON, PM_CONTACT_CIRCLE (moving obstacles) */
+    PM_CONTACT_WALL = 1,
+    /** A rigid chain of segments with the material on one side (obstacles[] of type polyline). */
+    PM_CONTACT_POLYLINE = 2,
+    /** A rigid closed polygon with the material outside. */
+    PM_CONTACT_POLYGON = 3,
+    /** A rigid disk with the material outside. */
+    PM_CONTACT_CIRCLE = 4
 } pm_contact_kind;
-
-/** Prescribed velocity of a moving obstacle at time t (for the obstacle kinds to come). */
-typedef void (*pm_contact_velocity_fn)(double t, const void *ctx, double v[PM_DIM]);
 
 /** Resultant force of one surface on the material over the last pm_contact_apply(). */
 typedef struct pm_contact_force {
@@ -102,14 +105,24 @@ typedef struct pm_contact_surface {
     pm_contact_law law;
     double mu;               /**< Coulomb coefficient (INFINITY: sticks; 0: slides freely) */
     long bc;                 /**< the case's boundary_conditions[] index it comes from (-1: none) */
+    long obstacle;           /**< the case's obstacles[] index it comes from (-1: none) */
     int guard;               /**< 1: a gmm/rkpm guard wall implied by a fixed side (no implicit terms) */
     size_t first, n;         /**< node set: its entries in pm_contact::node */
     int axis;                /**< wall: 0 for x = value, 1 for y = value */
     double value;            /**< wall: position */
-    double normal[PM_DIM];   /**< outward normal of the body's domain (pointing into the surface) */
-    pm_contact_velocity_fn velocity; /**< moving obstacle (NULL: at rest; none moves yet) */
-    const void *velocity_ctx;
+    double normal[PM_DIM];   /**< node set, wall: outward normal of the body's domain (into the surface) */
+    double origin[PM_DIM];   /**< node set, wall: a point of its plane; circle: centre at t = 0 */
+    double radius;           /**< circle */
+    size_t first_point, n_points; /**< polyline, polygon: its points in pm_contact::points (at t = 0) */
+    double side;             /**< polyline: +1 material left of its direction, -1 right; polygon: -1 when
+                                  counter-clockwise (the material, outside, is right of every segment) */
+    const pm_timefn *motion; /**< velocity per component (PM_DIM functions of time; NULL: at rest) */
+    double shift[PM_DIM];    /**< displacement of the obstacle at the time of the last detection */
+    double vel[PM_DIM];      /**< its velocity then */
+    double stiffness;        /**< penalty law: (c / h)^2 times the penalty factor: force per node mass and
+                                  penetration */
     pm_contact_force f;      /**< over the last apply */
+    pm_contact_force impulse;/**< the same terms times dt, summed over the applies since a reader reset it */
 } pm_contact_surface;
 
 /** A node touching a surface. */
@@ -118,6 +131,7 @@ typedef struct pm_contact_node {
     int32_t surface;         /**< index in pm_contact::surface */
     double normal[PM_DIM];   /**< outward unit normal at the node */
     double mu;               /**< friction coefficient */
+    double gap;              /**< distance from the material's surface to the obstacle (< 0: penetration) */
 } pm_contact_node;
 
 /** The surfaces of a simulation and the nodes touching them. */
@@ -129,6 +143,10 @@ typedef struct pm_contact {
     size_t cap;              /**< entries allocated: node sets plus walls x nodes, never grown in a step */
     size_t n_nodes;          /**< nodes of the field */
     pm_contact_node *node;
+    size_t n_points;         /**< polyline and polygon points of every obstacle, PM_DIM each */
+    double *points;
+    int32_t *slot;           /**< n_nodes: -1, or during the gap pass the node's entry for one surface */
+    double reach;            /**< nodes and particles within this distance of a surface are considered */
 } pm_contact;
 
 /** The nodal arrays one application works on (one body's field). */
@@ -168,11 +186,38 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
 int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double normal[PM_DIM], double mu,
                         pm_contact_law law, long bc, int guard);
 
+/**
+ * Add a rigid obstacle of the case (obstacles[@p k]): a polyline, polygon or circle moving with its
+ * velocity functions; @p wave is the P-wave speed and @p h the cell size that set the penalty
+ * stiffness. @return its index, or a negative status
+ */
+int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double wave, double h);
+
 /** Free (NULL is fine). */
 void pm_contact_destroy(pm_contact *ct);
 
-/** Find the nodes touching every surface at time @p t, from the node positions of @p g. */
+/**
+ * Find the nodes near every surface at time @p t, from the node positions of @p g: node sets keep
+ * their nodes, the other surfaces take the nodes within pm_contact::reach of them (or inside). Each
+ * entry's gap is first the node's own signed distance (node sets: 0), which
+ * pm_contact_gaps() replaces by the material's.
+ */
 void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t);
+
+/**
+ * The gap of every contact entry from the material's actual surface: the smallest, over the
+ * particles whose stencil holds the node, of the particle's signed distance to the surface minus
+ * its half-size along the normal. Contact then starts when the material reaches the surface, not
+ * when its cell does. Needs connected particles (pm_approx::connect at their positions).
+ */
+void pm_contact_gaps(pm_contact *ct, const pm_approx *a, const pm_particles *p);
+
+/**
+ * Signed distance of @p x to surface @p sf as placed at the last detection (positive on the
+ * material's side); @p n receives the unit normal pointing into the surface.
+ */
+double pm_contact_distance(const pm_contact *ct, const pm_contact_surface *sf, const double x[PM_DIM],
+                           double n[PM_DIM]);
 
 /**
  * Explicit steps: the law at every contact node of @p f that carries mass, then its prescribed
@@ -199,6 +244,11 @@ int pm_contact_force_of(const pm_contact *ct, size_t k, pm_contact_force *out);
 
 /** The laws on one node's velocity @p v (normal: outward unit normal). Return 1 when they acted. */
 int pm_contact_nodal_coulomb(const double normal[PM_DIM], double mu, double v[PM_DIM]);
+/** Nodal Coulomb law that lets the node approach at up to @p allowed (gap / dt) before it acts. */
+int pm_contact_nodal_coulomb_gap(const double normal[PM_DIM], double mu, double allowed, double v[PM_DIM]);
+/** Penalty law: the normal velocity change @p push (stiffness x penetration x dt) away from the surface,
+ *  and a tangential change up to mu times it, never reversing the slip. */
+int pm_contact_penalty_coulomb(const double normal[PM_DIM], double mu, double push, double v[PM_DIM]);
 int pm_contact_normal_only(const double normal[PM_DIM], double v[PM_DIM]);
 
 #endif

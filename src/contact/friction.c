@@ -37,6 +37,35 @@ int pm_contact_nodal_coulomb(const double normal[PM_DIM], double mu, double v[PM
     return 1;
 }
 
+/* Normal velocity cut by dvn > 0, the tangential speed by up to mu dvn (never reversed). */
+static void cut_slip(const double normal[PM_DIM], double mu, double vn, double dvn, double v[PM_DIM])
+{
+    double vt[PM_DIM];
+    for (int d = 0; d < PM_DIM; d++)
+        vt[d] = v[d] - vn * normal[d];
+    const double speed = norm(vt), c = mu * dvn;
+    const double keep = speed > c ? 1.0 - c / speed : 0.0;
+    for (int d = 0; d < PM_DIM; d++)
+        v[d] = keep * vt[d] + (vn - dvn) * normal[d];
+}
+
+int pm_contact_nodal_coulomb_gap(const double normal[PM_DIM], double mu, double allowed, double v[PM_DIM])
+{
+    const double vn = dot(v, normal);
+    if (!(vn > allowed))
+        return 0; /* separating, or closing no more than the gap in this step */
+    cut_slip(normal, mu, vn, vn - allowed, v);
+    return 1;
+}
+
+int pm_contact_penalty_coulomb(const double normal[PM_DIM], double mu, double push, double v[PM_DIM])
+{
+    if (!(push > 0))
+        return 0;
+    cut_slip(normal, mu, dot(v, normal), push, v);
+    return 1;
+}
+
 int pm_contact_normal_only(const double normal[PM_DIM], double v[PM_DIM])
 {
     const double vn = dot(v, normal);
@@ -64,9 +93,12 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
         dv[d] = after[d] - before[d];
     const double dvn = dot(dv, cn->normal);
     sf->f.normal -= m * dvn / dt;
+    sf->impulse.normal -= m * dvn;
     for (int d = 0; d < PM_DIM; d++) {
         sf->f.force[d] += m * dv[d] / dt;
         sf->f.tangent[d] += m * (dv[d] - dvn * cn->normal[d]) / dt;
+        sf->impulse.force[d] += m * dv[d];
+        sf->impulse.tangent[d] += m * (dv[d] - dvn * cn->normal[d]);
     }
 }
 
@@ -85,9 +117,23 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         double *v = f.v + PM_DIM * n, before[PM_DIM];
         memcpy(before, v, sizeof before);
         int acted = 0;
+        if (sf->motion) { /* the laws act on the velocity relative to a moving obstacle */
+            for (int d = 0; d < PM_DIM; d++)
+                v[d] -= sf->vel[d];
+        }
         switch (sf->law) {
-        case PM_CONTACT_LAW_NODAL_COULOMB: acted = pm_contact_nodal_coulomb(cn->normal, cn->mu, v); break;
-        case PM_CONTACT_LAW_PENALTY_COULOMB: break; /* not yet: no surface is created with it */
+        case PM_CONTACT_LAW_NODAL_COULOMB:
+            /* a node set's old arithmetic, bit for bit, where the material touches it */
+            acted = cn->gap > 0 ? pm_contact_nodal_coulomb_gap(cn->normal, cn->mu, cn->gap / dt, v)
+                                : pm_contact_nodal_coulomb(cn->normal, cn->mu, v);
+            break;
+        case PM_CONTACT_LAW_PENALTY_COULOMB:
+            acted = cn->gap < 0 && pm_contact_penalty_coulomb(cn->normal, cn->mu, -sf->stiffness * cn->gap * dt_acc, v);
+            break;
+        }
+        if (sf->motion) {
+            for (int d = 0; d < PM_DIM; d++)
+                v[d] += sf->vel[d];
         }
         if (acted)
             add_force(sf, cn, f.mass[n], before, v, dt);
@@ -103,8 +149,16 @@ void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f)
         return;
     for (size_t k = 0; k < ct->n_node; k++) {
         const pm_contact_node *cn = &ct->node[k];
+        const pm_contact_surface *sf = &ct->surface[cn->surface];
+        /* only where the material touches; a penalty surface acts by its force alone */
+        if (cn->gap > 0 || sf->law == PM_CONTACT_LAW_PENALTY_COULOMB)
+            continue;
         double *v = f.v + PM_DIM * cn->node;
+        for (int d = 0; sf->motion && d < PM_DIM; d++)
+            v[d] -= sf->vel[d];
         pm_contact_normal_only(cn->normal, v);
+        for (int d = 0; sf->motion && d < PM_DIM; d++)
+            v[d] += sf->vel[d];
         constrain(&f, cn->node, v);
     }
 }

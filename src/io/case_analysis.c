@@ -119,6 +119,10 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
     pm_check(jr_range(&cx, "gravity_ramp_time", c->analysis.gravity_ramp_time, 0, 0, INFINITY, 0));
     pm_check(jr_number(&cx, a, "damping", 0, 0, &c->analysis.damping));
     pm_check(jr_range(&cx, "damping", c->analysis.damping, 0, 0, 1, 0));
+    double flip;
+    pm_check(jr_number(&cx, a, "flip", 0, 1.0, &flip));
+    pm_check(jr_range(&cx, "flip", flip, 0, 0, 1, 0));
+    c->analysis.pic = 1.0 - flip;
     pm_check(jr_enum(&cx, a, "density_update", 0, density_updates, 0, &v));
     c->analysis.density_from_positions = v;
     if (c->method != PM_METHOD_MPM && c->analysis.density_from_positions)

@@ -202,6 +202,7 @@ int pm_case_parse_body(pm_case *c, const char *path, json_t *b, const char *def_
     const double zero[PM_DIM] = {0, 0};
     pm_check(jr_vec2(&cx, b, "velocity", 0, zero, body->velocity));
     pm_check(parse_initial_stress(c, path, b, body));
+    pm_check(jr_string(&cx, b, "contact_group", 0, body->name, body->contact_group, sizeof body->contact_group));
     if (c->grid.type == PM_GRID_RECTANGLE) {
         double lo[PM_DIM], hi[PM_DIM], glo[PM_DIM], ghi[PM_DIM];
         pm_case_shape_box(&body->shape, lo, hi);

@@ -115,6 +115,17 @@ int pm_case_parse_bcs(pm_case *c, json_t *bcs)
                                         c->file, bp, k2, dirs[which]);
                 bc->dirs |= 1u << which;
             }
+            if (json_object_get(b, "until")) {
+                /* a gate that opens (a silo outlet closed while the fill settles); the implicit solvers
+                 * and the meshfree node clouds number or rebuild their constraints once */
+                if (c->analysis.type != PM_ANALYSIS_EXPLICIT || c->method != PM_METHOD_MPM)
+                    return pm_error_set(PM_EINPUT,
+                                        "%s: %s.until: a fixed condition can be released only in an 'explicit' "
+                                        "analysis with method 'mpm'; remove 'until'",
+                                        c->file, path);
+                pm_check(jr_number(&cx, b, "until", 0, INFINITY, &bc->until));
+                pm_check(jr_range(&cx, "until", bc->until, 0, 1, INFINITY, 0));
+            }
         } else if (bc->type == PM_BC_VELOCITY) {
             pm_check(jr_only_keys(&cx, b, pm_case_keys(PM_KEYS_BC_VELOCITY)));
             pm_check(jr_number(&cx, b, "until", 0, INFINITY, &bc->until));

@@ -108,6 +108,9 @@ static int parse_root(pm_case *c, json_t *root)
     pm_check(pm_case_parse_probes(c, json_object_get(root, "probes")));
     pm_check(pm_case_parse_output(c, json_object_get(root, "output")));
     pm_check(pm_case_parse_sinks(c, json_object_get(root, "sinks")));
+    pm_check(pm_case_parse_contact_pairs(c, json_object_get(root, "contact_pairs")));
+    pm_check(pm_case_parse_obstacles(c, json_object_get(root, "obstacles")));
+    pm_check(pm_case_parse_loads(c, json_object_get(root, "loads")));
     return pm_case_check_sizes(c);
 }
 
@@ -187,7 +190,10 @@ void pm_case_free(pm_case *c)
     free(c->sinks);
     free(c->materials);
     free(c->bcs);
+    pm_case_free_obstacles(c);
+    pm_case_free_loads(c);
     free(c->probes);
+    free(c->contact_pairs);
     json_decref(c->doc);
     memset(c, 0, sizeof *c);
 }

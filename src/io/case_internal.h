@@ -38,6 +38,10 @@ typedef enum pm_case_keyset_id {
     PM_KEYS_SINK_REGION,
     PM_KEYS_SINK_OUTSIDE_GRID,
     PM_KEYS_SINK_LINE,
+    PM_KEYS_CONTACT_PAIR,
+    PM_KEYS_OBSTACLE,
+    PM_KEYS_TIMEFN,
+    PM_KEYS_LOAD,
     PM_KEYS_COUNT
 } pm_case_keyset_id;
 
@@ -109,8 +113,33 @@ int pm_case_check_polygon(const pm_case *c, const char *path, const pm_shape *s)
 /** The bounding box of a shape; NaN for a gmsh group, whose extent only the mesh knows. */
 void pm_case_shape_box(const pm_shape *s, double lo[PM_DIM], double hi[PM_DIM]);
 
+/**
+ * `contact_pairs`: after the bodies, the sources and the analysis; names the contact groups of the
+ * bodies and sources (case_contact_pairs.c).
+ */
+int pm_case_parse_contact_pairs(pm_case *c, json_t *cp);
+
 /** `boundary_conditions`: after the analysis and the grid, which decide what a condition may be. */
 int pm_case_parse_bcs(pm_case *c, json_t *bcs);
+
+/** `obstacles` (after `analysis` and `grid`, whose type and box it checks against). */
+int pm_case_parse_obstacles(pm_case *c, json_t *obs);
+
+/** Free the obstacles a case holds (pm_case_free calls it). */
+void pm_case_free_obstacles(pm_case *c);
+
+/** `loads` (after `analysis`). */
+int pm_case_parse_loads(pm_case *c, json_t *ls);
+
+/** Free the loads a case holds (pm_case_free calls it). */
+void pm_case_free_loads(pm_case *c);
+
+/**
+ * A function of time at key path @p path: a number (constant), {"value": v, "ramp_time": T} or
+ * {"table": [[t, v], ...]} with increasing times. @p f owns a table afterwards, also after a failure
+ * (pm_timefn_free).
+ */
+int pm_case_parse_timefn(const char *file, const char *path, json_t *v, pm_timefn *f);
 
 /** `probes`: after the bodies, which a probe may name. */
 int pm_case_parse_probes(pm_case *c, json_t *ps);

@@ -7,9 +7,10 @@
 
 static const char *const top_keys[] = {"title", "dimension", "formulation", "method", "shape_function", "lme_gamma",
                                        "support_radius", "max_condition", "analysis", "grid", "materials", "bodies",
-                                       "boundary_conditions", "output", "probes", "sources", "sinks", NULL};
+                                       "boundary_conditions", "output", "probes", "sources", "sinks", "contact_pairs",
+                                       "obstacles", "loads", NULL};
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
-                                            "gravity_ramp_time", "damping", "newton", "load_steps",
+                                            "gravity_ramp_time", "damping", "flip", "newton", "load_steps",
                                             "density_update", "strength_reduction", "fbar", "max_steps", NULL};
 static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "displacement_ratio", NULL};
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
@@ -17,13 +18,13 @@ static const char *const newton_keys[] = {"tolerance", "displacement_tolerance",
 static const char *const rect_keys[] = {"type", "origin", "size", "cells", "element", NULL};
 static const char *const gmsh_keys[] = {"type", "file", NULL};
 static const char *const body_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
-                                        "initial_stress", "k0", "surface_y", NULL};
+                                        "initial_stress", "k0", "surface_y", "contact_group", NULL};
 static const char *const shape_rect[] = {"type", "min", "max", NULL}, *const shape_poly[] = {"type", "points", NULL},
                          *const shape_circ[] = {"type", "center", "radius", NULL},
                          *const shape_grp[] = {"type", "name", NULL};
 /* every key of any condition; each type then allows its own */
 static const char *const bc_keys[] = {"type", "boundary", "directions", "value", "coefficient", "until", NULL};
-static const char *const bc_fixed[] = {"type", "boundary", "directions", NULL};
+static const char *const bc_fixed[] = {"type", "boundary", "directions", "until", NULL};
 static const char *const bc_velocity[] = {"type", "boundary", "value", "until", NULL};
 static const char *const bc_friction[] = {"type", "boundary", "coefficient", NULL};
 static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};
@@ -32,11 +33,16 @@ static const char *const output_keys[] = {"directory", "interval", "probe_interv
                                           "picture_width", NULL};
 static const char *const source_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
                                           "initial_stress", "k0", "surface_y", "times", "start", "period",
-                                          "until", "only_when_free", NULL};
+                                          "until", "only_when_free", "contact_group", NULL};
 static const char *const sink_outlet[] = {"type", "name", "boundary", NULL},
                          *const sink_region[] = {"type", "name", "shape", NULL},
                          *const sink_outside[] = {"type", "name", NULL};
 static const char *const sink_line[] = {"x", "y", "from", "to", "normal", NULL};
+static const char *const pair_keys[] = {"bodies", "law", "friction", "separation", NULL};
+static const char *const obstacle_keys[] = {"name", "type", "points", "center", "radius", "material_side", "law",
+                                            "friction", "penalty_factor", "velocity", NULL};
+static const char *const timefn_keys[] = {"value", "ramp_time", "table", NULL};
+static const char *const load_keys[] = {"name", "nearest", "min", "max", "force", NULL};
 
 static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_TOP] = {"", NULL, top_keys},
@@ -62,6 +68,10 @@ static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_SINK_REGION] = {"sinks[]", "region", sink_region},
     [PM_KEYS_SINK_OUTSIDE_GRID] = {"sinks[]", "outside_grid", sink_outside},
     [PM_KEYS_SINK_LINE] = {"sinks[].boundary", NULL, sink_line},
+    [PM_KEYS_CONTACT_PAIR] = {"contact_pairs[]", NULL, pair_keys},
+    [PM_KEYS_OBSTACLE] = {"obstacles[]", NULL, obstacle_keys},
+    [PM_KEYS_TIMEFN] = {"obstacles[].velocity[]", NULL, timefn_keys},
+    [PM_KEYS_LOAD] = {"loads[]", NULL, load_keys},
 };
 
 const char *const *pm_case_keys(pm_case_keyset_id id) { return table[id].keys; }

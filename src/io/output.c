@@ -279,7 +279,7 @@ static int remove_stale(const char *dir, int keep_probes)
 {
     static const char *const names[] = { "particles.pvd", "run.json", "particles.pvd.tmp",
                                          "run.json.tmp", "grid.vtu.tmp", "probes.csv", "grid.pvd", "grid.pvd.tmp",
-                                         "releases.csv", "removals.csv" };
+                                         "releases.csv", "removals.csv", "forces.csv", "forces.png" };
     DIR *d = opendir(dir);
     if (!d)
         return pm_error_set(PM_EIO, "cannot read directory '%s': %s", dir, strerror(errno));

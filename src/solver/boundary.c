@@ -1,7 +1,9 @@
-/* Prescribed boundary conditions: fixed and velocity node sets, timed velocity conditions (boundary.h). */
+/* Prescribed boundary conditions: fixed and velocity node sets, timed velocity conditions and fixed
+ * conditions released at a time (boundary.h). */
 #include "boundary.h"
 
 #include "contact/contact.h"
+#include "contact/multibody.h"
 #include "pmech/error.h"
 
 #include <math.h>
@@ -60,6 +62,43 @@ int pm_bc_node_set(const pm_case *c, size_t b, pm_grid *g, const pm_node_set **o
     return PM_OK;
 }
 
+/* One fixed or velocity condition into nd->fixed / nd->vfix, and into nd->timed if it changes at a time. */
+static int apply_condition(const pm_case *c, size_t b, pm_grid *g, pm_nodal *nd)
+{
+    const pm_case_bc *bc = &c->bcs[b];
+    const int released = bc->type == PM_BC_FIXED && isfinite(bc->until) && bc->until > 0;
+    const pm_node_set *set;
+    pm_check(pm_bc_node_set(c, b, g, &set));
+    for (size_t i = 0; i < set->n; i++) {
+        int32_t n = set->nodes[i];
+        for (int d = 0; d < PM_DIM; d++) {
+            if (!(bc->dirs & (1u << d)))
+                continue;
+            if (released && (nd->fixed[n] & (1u << d)))
+                return pm_error_set(PM_EINPUT,
+                                    "%s: boundary_conditions[%zu]: the node at (%g, %g) is also held in %c by another "
+                                    "condition (or the axis); a condition with 'until' must not share nodes with "
+                                    "another, as releasing it would free them",
+                                    c->file, b, g->x[PM_DIM * n], g->x[PM_DIM * n + 1], "xy"[d]);
+            nd->fixed[n] |= (uint8_t)(1u << d);
+            nd->vfix[PM_DIM * n + d] = bc->type == PM_BC_VELOCITY ? bc->value[d] : 0.0;
+        }
+    }
+    if ((bc->type == PM_BC_VELOCITY && isfinite(bc->until) && bc->until > 0) || released) {
+        struct pm_timed_bc *t = realloc(nd->timed, (nd->n_timed + 1) * sizeof *t);
+        if (!t)
+            return pm_error_set(PM_ENOMEM, "out of memory");
+        nd->timed = t;
+        t[nd->n_timed].set = (int)(set - g->sets);
+        t[nd->n_timed].dirs = bc->dirs;
+        t[nd->n_timed].until = bc->until;
+        t[nd->n_timed].release = released;
+        t[nd->n_timed].done = 0;
+        nd->n_timed++;
+    }
+    return PM_OK;
+}
+
 int pm_bc_setup(const pm_case *c, pm_grid *g, pm_nodal *nd)
 {
     if (c->formulation == PM_AXISYMMETRIC) {
@@ -70,33 +109,16 @@ int pm_bc_setup(const pm_case *c, pm_grid *g, pm_nodal *nd)
                 nd->vfix[PM_DIM * n] = 0.0;
             }
     }
-    for (size_t b = 0; b < c->n_bcs; b++) {
-        const pm_case_bc *bc = &c->bcs[b];
-        if (bc->type == PM_BC_FRICTION)
-            continue; /* a contact surface (pm_contact_create) */
-        const pm_node_set *set;
-        pm_check(pm_bc_node_set(c, b, g, &set));
-        for (size_t i = 0; i < set->n; i++) {
-            int32_t n = set->nodes[i];
-            for (int d = 0; d < PM_DIM; d++) {
-                if (!(bc->dirs & (1u << d)))
-                    continue;
-                nd->fixed[n] |= (uint8_t)(1u << d);
-                nd->vfix[PM_DIM * n + d] = bc->type == PM_BC_VELOCITY ? bc->value[d] : 0.0;
-            }
+    /* Conditions that are released later come second and must not share a held component with any
+     * other: releasing it would otherwise free a node that another condition still holds. */
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t b = 0; b < c->n_bcs; b++) {
+            const pm_case_bc *bc = &c->bcs[b];
+            const int released = bc->type == PM_BC_FIXED && isfinite(bc->until) && bc->until > 0;
+            if (bc->type == PM_BC_FRICTION || released != pass)
+                continue; /* friction: a contact surface (pm_contact_create) */
+            pm_check(apply_condition(c, b, g, nd));
         }
-        if (bc->type == PM_BC_VELOCITY && isfinite(bc->until) && bc->until > 0) {
-            struct pm_timed_bc *t = realloc(nd->timed, (nd->n_timed + 1) * sizeof *t);
-            if (!t)
-                return pm_error_set(PM_ENOMEM, "out of memory");
-            nd->timed = t;
-            t[nd->n_timed].set = (int)(set - g->sets);
-            t[nd->n_timed].dirs = bc->dirs;
-            t[nd->n_timed].until = bc->until;
-            t[nd->n_timed].done = 0;
-            nd->n_timed++;
-        }
-    }
     return PM_OK;
 }
 
@@ -109,10 +131,17 @@ void pm_sim_update_constraints(pm_sim *s)
             continue;
         const pm_node_set *set = &s->grid.sets[t->set];
         for (size_t i = 0; i < set->n; i++)
-            for (int d = 0; d < PM_DIM; d++)
-                if (t->dirs & (1u << d))
+            for (int d = 0; d < PM_DIM; d++) {
+                if (!(t->dirs & (1u << d)))
+                    continue;
+                if (t->release)
+                    nd->fixed[set->nodes[i]] &= (uint8_t) ~(1u << d);
+                else
                     nd->vfix[PM_DIM * set->nodes[i] + d] = 0.0;
+            }
         t->done = 1;
+        if (s->mb) /* every body field holds the switched nodes */
+            pm_multibody_copy_conditions(s->mb, nd);
     }
     /* the contact set of this step: meshfree nodes moved onto or past walls since the last one */
     pm_contact_detect(s->contact, &s->grid, s->t);

@@ -14,8 +14,9 @@
 int pm_bc_node_set(const pm_case *c, size_t b, pm_grid *g, const pm_node_set **out);
 
 /* The prescribed components of every fixed and velocity condition into nd->fixed / nd->vfix (with
- * the axis r = 0 of an axisymmetric run held radially), and the velocity conditions with an
- * `until` time into nd->timed (pm_sim_update_constraints switches them). */
+ * the axis r = 0 of an axisymmetric run held radially), and the conditions with an `until` time into
+ * nd->timed (pm_sim_update_constraints switches them: velocity conditions are then held, fixed ones
+ * released). PM_EINPUT when a fixed condition to be released shares a held component with another. */
 int pm_bc_setup(const pm_case *c, pm_grid *g, pm_nodal *nd);
 
 #endif

@@ -7,6 +7,8 @@
 #include "fbar.h"
 #include "flow.h"
 #include "meshfree_internal.h"
+#include "contact/contact.h"
+#include "solver/loads.h"
 
 #include "pmech/error.h"
 
@@ -37,7 +39,8 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
     long bad = pm_xp_p2g(s, 0.0, 1, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
-    pm_xp_grid_update(s, dt, 1);
+    pm_check(pm_loads_apply(s, s->t));
+    pm_xp_grid_update(s, dt);
     pm_nodal *nd = &s->nd;
     if (musl) {
         pm_xp_musl_project(s, dt);
@@ -67,7 +70,8 @@ static int step_usf(pm_sim *s, double dt)
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
-    pm_xp_grid_update(s, dt, 1);
+    pm_check(pm_loads_apply(s, s->t));
+    pm_xp_grid_update(s, dt);
     pm_xp_g2p_usf(s, dt);
     return PM_OK;
 }
@@ -92,6 +96,7 @@ static int step_newmark_pc(pm_sim *s, double dt)
     bad = pm_xp_stress_and_force(s, dt, s->nd.vel, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
+    pm_check(pm_loads_apply(s, s->t + dt));
     pm_xp_grid_newmark(s, dt, gamma);
     pm_xp_g2p_newmark(s, dt, gamma);
     return PM_OK;
@@ -112,6 +117,7 @@ int pm_explicit_step(pm_sim *s, double dt)
     if (rc)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     pm_sim_update_constraints(s);
+    pm_contact_gaps(s->contact, s->approx, &s->p); /* from where the material is at the step's start */
     if (s->rho_p && (rc = pm_sim_volumes_from_positions(s)) != PM_OK)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     /* particles drift apart in memory as they move; a periodic sort keeps the scatters local (and

@@ -10,6 +10,13 @@
 #include "solver/sim_internal.h"
 #include "scatter.h"
 
+/* Shape functions of particle i through the approximation's interface; with body fields its nodes
+ * are those of the particle's own field (contact/multibody.h). */
+int pm_xp_stencil(const pm_sim *s, size_t i, pm_stencil *st);
+
+/* Smallest nodal mass treated as carrying material: guards divisions by round-off masses. */
+double pm_xp_mass_floor(const pm_sim *s);
+
 /* Mass, momentum (of v + mom_shift * a) and, with with_force, internal force plus weight (gravity g)
  * of every particle to the grid. Returns the first particle outside the grid, or LONG_MAX. */
 long pm_xp_p2g(pm_sim *s, double mom_shift, int with_force, const double g[PM_DIM]);
@@ -41,8 +48,11 @@ void pm_xp_g2p_newmark(pm_sim *s, double dt, double gamma);
 long pm_xp_stress_only(pm_sim *s, const double *nodal_v, double dt);
 
 /* Nodal velocities from momentum, end-of-step velocities from forces with local damping, constraints
- * (also on the start velocity when constrain_start) and friction; acc = (v_new - v) / dt. */
-void pm_xp_grid_update(pm_sim *s, double dt, int constrain_start);
+ * on the end-of-step velocity (meshfree: on the start velocity too) and friction; acc = (v_new - v) / dt.
+ * In MPM a prescribed component's acceleration is therefore the change from the projected to the
+ * prescribed velocity: the particles' velocity update (FLIP) receives the reaction's impulse, as the
+ * grid does. */
+void pm_xp_grid_update(pm_sim *s, double dt);
 
 /* Nodal velocities from momentum into out, with constraints and the contact normal. */
 void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out);

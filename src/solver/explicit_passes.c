@@ -10,6 +10,7 @@
  * the same code as the written-out 2-D ones.
  */
 #include "explicit_internal.h"
+#include "contact/multibody.h"
 #include "fbar.h"
 #include "point_update.h"
 
@@ -98,7 +99,7 @@ static inline void lq_eval(const lq_grid *q, const double xp[PM_DIM], int32_t cx
  * inline, without the per-cell reuse of the LQ instances). */
 static inline int stencil_at(const pm_sim *s, size_t i, pm_stencil *st)
 {
-    if (s->approx->fast_linear_quad) {
+    if (s->approx->fast_linear_quad) { /* never with body fields (pm_sim_create) */
         const lq_grid q = lq_of(&s->grid);
         int32_t cx, cy;
         lq_cell(&q, s->p.cell[i], &cx, &cy);
@@ -107,6 +108,8 @@ static inline int stencil_at(const pm_sim *s, size_t i, pm_stencil *st)
         lq_eval(&q, s->p.x + PM_DIM * i, cx, cy, st->N, st->dN);
         return PM_OK;
     }
+    if (s->mb) /* body fields: the nodes of the particle's own field */
+        return pm_xp_stencil(s, i, st);
     return s->approx->ops->eval(s->approx, &s->p, i, st);
 }
 
@@ -310,30 +313,40 @@ long pm_xp_p2g(pm_sim *s, double mom_shift, int with_force, const double g[PM_DI
     p2g_ctx c = {mom_shift, with_force, {0}};
     for (int d = 0; d < PM_DIM; d++)
         c.g[d] = g[d];
-    return pm_scatter_pass(s, s->approx->fast_linear_quad ? p2g_range_lq : p2g_range, &c,
-                           PM_Z_MASS | PM_Z_MOM | PM_Z_FORCE).bad;
+    const long bad = pm_scatter_pass(s, s->approx->fast_linear_quad ? p2g_range_lq : p2g_range, &c,
+                                     PM_Z_MASS | PM_Z_MOM | PM_Z_FORCE).bad;
+    if (s->mb && bad == LONG_MAX) /* where the body fields meet, from this step's masses */
+        pm_multibody_prepare(s);
+    return bad;
 }
 
 /* MUSL: particle velocities from nodal accelerations, then their momentum back to the grid. */
-PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, double dt, const int LQ)
+PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, double dt, const int LQ,
+                        const int BLEND)
 {
     pm_particles *p = &s->p;
     const lq_grid q = lq_of(&s->grid);
     const double *restrict x = p->x, *restrict mass = p->mass, *restrict nacc = s->nd.acc;
+    const double *restrict nvn = s->nd.vel_new;
     double *restrict v = p->v;
     const int32_t *restrict cell = p->cell;
+    /* the FLIP share of the velocity update; the rest is PIC, the end-of-step grid velocity */
+    const double pic = s->c->analysis.pic, flip = 1.0 - pic;
     cell_sums a;
     memset(&a, 0, sizeof a);
     pm_stencil st;
-    double Nl[4], ga[PM_DIM][4] = {{0}};
+    double Nl[4], ga[PM_DIM][4] = {{0}}, gv[PM_DIM][4] = {{0}};
     int32_t cur = -1, cx = 0, cy = 0;
     for (size_t i = lo; i < hi; i++) {
         if (LQ) {
             LQ_ENTER_CELL(add_cell_sums(b, &q, cx, cy, &a, PM_Z_MOM), {
                 memset(&a, 0, sizeof a);
                 for (int k = 0; k < 4; k++)
-                    for (int d = 0; d < PM_DIM; d++)
+                    for (int d = 0; d < PM_DIM; d++) {
                         ga[d][k] = nacc[PM_DIM * (size_t)node[k] + d];
+                        if (BLEND)
+                            gv[d][k] = nvn[PM_DIM * (size_t)node[k] + d];
+                    }
             });
             double xi, eta;
             lq_N(&q, x + PM_DIM * i, cx, cy, Nl, &xi, &eta);
@@ -341,13 +354,17 @@ PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b,
             stencil_at(s, i, &st);
         }
         const int nk = LQ ? 4 : st.n;
-        double ap[PM_DIM] = {0};
+        double ap[PM_DIM] = {0}, vg[PM_DIM] = {0};
         for (int d = 0; d < PM_DIM; d++)
-            for (int k = 0; k < nk; k++)
+            for (int k = 0; k < nk; k++) {
                 ap[d] += SN(k) * (LQ ? ga[d][k] : nacc[PM_DIM * st.node[k] + d]);
+                if (BLEND)
+                    vg[d] += SN(k) * (LQ ? gv[d][k] : nvn[PM_DIM * st.node[k] + d]);
+            }
         double vp[PM_DIM];
         for (int d = 0; d < PM_DIM; d++)
-            v[PM_DIM * i + d] = vp[d] = v[PM_DIM * i + d] + dt * ap[d];
+            v[PM_DIM * i + d] = vp[d] =
+                BLEND ? flip * (v[PM_DIM * i + d] + dt * ap[d]) + pic * vg[d] : v[PM_DIM * i + d] + dt * ap[d];
         const double m = mass[i];
         /* node innermost: the four nodes of an LQ cell are one vector */
         for (int d = 0; d < PM_DIM; d++)
@@ -365,19 +382,32 @@ PM_BODY void musl_body(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b,
 static void musl_range(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, const void *dt, pm_range_out *out)
 {
     (void)out;
-    musl_body(s, lo, hi, b, *(const double *)dt, 0);
+    if (s->c->analysis.pic > 0)
+        musl_body(s, lo, hi, b, *(const double *)dt, 0, 1);
+    else
+        musl_body(s, lo, hi, b, *(const double *)dt, 0, 0);
 }
 
 PM_HOT static void musl_range_lq(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, const void *dt,
                                  pm_range_out *out)
 {
     (void)out;
-    musl_body(s, lo, hi, b, *(const double *)dt, 1);
+    musl_body(s, lo, hi, b, *(const double *)dt, 1, 0);
+}
+
+/* The PIC-blending copy of the LQ instance, so that the usual one gathers no nodal velocities. */
+static void musl_range_lq_blend(pm_sim *s, size_t lo, size_t hi, const pm_scatter_buf *b, const void *dt,
+                                pm_range_out *out)
+{
+    (void)out;
+    musl_body(s, lo, hi, b, *(const double *)dt, 1, 1);
 }
 
 void pm_xp_musl_project(pm_sim *s, double dt)
 {
-    pm_scatter_pass(s, s->approx->fast_linear_quad ? musl_range_lq : musl_range, &dt, PM_Z_MOM);
+    const int blend = s->c->analysis.pic > 0;
+    pm_scatter_pass(s, s->approx->fast_linear_quad ? (blend ? musl_range_lq_blend : musl_range_lq) : musl_range, &dt,
+                    PM_Z_MOM);
 }
 
 /* USL and MUSL, last pass (see pm_xp_usl_finish). The LQ instance reads the four nodes once per run

@@ -38,9 +38,9 @@ void pm_mf_destroy(pm_sim *s);
  * velocity (what = 0, values from vfix) or acceleration (what = 1, zero) what is prescribed. */
 void pm_mf_impose(pm_sim *s, double *nodal, int what);
 
-/* Explicit steps, end of grid_update: impose on the end-of-step velocity (and on the start one
- * when constrain_start), then the accelerations of those nodes again as (v_new - v) / dt. */
-void pm_mf_impose_update(pm_sim *s, double dt, int constrain_start);
+/* Explicit steps, end of grid_update: impose on the start and end-of-step velocities, then the
+ * accelerations of those nodes again as (v_new - v) / dt. */
+void pm_mf_impose_update(pm_sim *s, double dt);
 
 /* End of an explicit step: move the nodes with their velocity (RKPM: to the particles), refresh
  * the Lambda rows. */

@@ -258,12 +258,11 @@ void pm_mf_impose(pm_sim *s, double *nodal, int what)
     }
 }
 
-void pm_mf_impose_update(pm_sim *s, double dt, int constrain_start)
+void pm_mf_impose_update(pm_sim *s, double dt)
 {
     pm_mf *mf = s->mf;
     pm_nodal *nd = &s->nd;
-    if (constrain_start)
-        pm_mf_impose(s, nd->vel, 0);
+    pm_mf_impose(s, nd->vel, 0);
     pm_mf_impose(s, nd->vel_new, 0);
     for (int c = 0; c < 2; c++) {
         if (!mf->kd[c])

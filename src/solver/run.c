@@ -5,6 +5,8 @@
 #include "solver/run_warnings.h"
 #include "solver/thread_governor.h"
 #include "flow.h"
+#include "forces_log.h"
+#include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
 #include "io/output.h"
@@ -195,6 +197,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_flow_log flog = {0};
     if (!rc && out)
         rc = pm_flow_log_open(&flog, s, dir);
+    pm_forces_log forces = {0};
+    if (!rc && out)
+        rc = pm_forces_log_open(&forces, s, dir);
+    if (!rc && out && s->mb)
+        rc = pm_multibody_log_open(s->mb, c, dir);
     double particle_steps = 0; /* the count changes with sources and sinks */
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
@@ -217,7 +224,11 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         if (rc)
             break;
         particle_steps += n_before;
+        if (s->mb)
+            pm_multibody_log_step(s->mb, dt);
         if (out && (rc = pm_flow_log_step(&flog, s)) != PM_OK)
+            break;
+        if (out && (rc = pm_forces_log_step(&forces, s, s->t >= end - eps)) != PM_OK)
             break;
         dt_min = fmin(dt_min, dt);
         dt_max = fmax(dt_max, dt);
@@ -226,6 +237,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             rc = pm_output_probes(out, s->t, &s->p);
             if (!rc && s->t >= next_energy - eps) {
                 rc = write_energy(out, s);
+                if (!rc && s->mb)
+                    rc = pm_multibody_log_row(s->mb, c, s->t);
                 next_energy += interval / 20;
             }
             if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
@@ -272,6 +285,12 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_progress_end(&pg, s->step, s->t, loop_seconds);
     close_implicit_files(&imf);
     int rc_log = pm_flow_log_close(&flog);
+    if (!rc && rc_log)
+        rc = rc_log;
+    rc_log = pm_forces_log_close(&forces);
+    if (!rc && rc_log)
+        rc = rc_log;
+    rc_log = pm_multibody_log_close(s->mb);
     if (!rc && rc_log)
         rc = rc_log;
     pm_flow_totals ft;

@@ -9,7 +9,7 @@
  * the real arrays. */
 static pm_scatter_buf thread_buf(const pm_sim *s, int tid)
 {
-    size_t nn = s->grid.n_nodes;
+    size_t nn = s->nd.n_all;
     pm_scatter_buf b;
     if (tid == 0 || s->scatter == PM_SCATTER_COLOUR) {
         b.mass = s->nd.mass;
@@ -37,7 +37,7 @@ static void zero_buf(pm_scatter_buf b, size_t nn, unsigned what)
 /* Sum the other threads' buffers into the real arrays (called inside a parallel region). */
 static void reduce_bufs(const pm_sim *s, int nt, unsigned what)
 {
-    size_t nn = s->grid.n_nodes;
+    size_t nn = s->nd.n_all;
     for (int t = 1; t < nt; t++) {
         pm_scatter_buf b = thread_buf(s, t);
 #pragma omp for schedule(static)
@@ -64,7 +64,7 @@ pm_range_out pm_scatter_pass(pm_sim *s, pm_range_fn fn, const void *ctx, unsigne
 {
     long bad = LONG_MAX;
     double wave = 0;
-    const size_t n = s->p.n, nn = s->grid.n_nodes;
+    const size_t n = s->p.n, nn = s->nd.n_all;
 #pragma omp parallel num_threads(s->nd.n_threads) reduction(min : bad) reduction(max : wave)
     {
         const int tid = omp_get_thread_num(), used = omp_get_num_threads();

@@ -7,6 +7,8 @@
 
 #include "boundary.h"
 #include "contact/contact.h"
+#include "solver/loads.h"
+#include "contact/multibody.h"
 #include "flow.h"
 #include "core/seed.h"
 #include "fbar.h"
@@ -72,6 +74,7 @@ static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads, int need_buffers)
     nd->acc = calloc(PM_DIM * nn, sizeof(double));
     nd->fixed = calloc(nn, 1);
     nd->vfix = calloc(PM_DIM * nn, sizeof(double));
+    nd->n_all = nn;
     nd->n_threads = n_threads < 1 ? 1 : n_threads;
     if (nd->n_threads > 1 && need_buffers)
         nd->scratch = calloc((size_t)(nd->n_threads - 1) * PM_SCATTER_WIDTH * nn, sizeof(double));
@@ -126,6 +129,11 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         s->approx->n_threads = n_threads < 1 ? 1 : n_threads;
         s->approx->fast_linear_quad = s->approx->ops->linear_quad_fast && s->grid.structured &&
                                       s->grid.element == PM_QUAD4;
+        if ((rc = pm_multibody_create(c, s->grid.n_nodes, &s->mb)) != 0)
+            goto fail;
+        /* the inline linear-quad passes number a cell's nodes themselves, in one field */
+        if (s->mb)
+            s->approx->fast_linear_quad = 0;
     }
     if ((rc = scatter_strategy(&s->scatter)) != 0)
         goto fail;
@@ -144,12 +152,16 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         goto fail;
     if ((rc = pm_particles_alloc_capacity(&s->p, total, total + room, max_state(c))) != 0 ||
         (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 || (meshfree && (rc = pm_mf_create(s, n_threads)) != 0) ||
-        (rc = alloc_nodal(&s->nd, s->grid.n_nodes, n_threads, s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
+        (rc = alloc_nodal(&s->nd, s->grid.n_nodes * (s->mb ? (size_t)s->mb->n_fields : 1), n_threads,
+                          s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
         (rc = pm_bc_setup(c, &s->grid, &s->nd)) != 0 ||
         (rc = pm_contact_create(c, &s->grid, pm_sim_frame_grid(s), &s->contact)) != 0 ||
+        (s->mb && (rc = pm_multibody_attach_surfaces(s->mb, pm_contact_n_surfaces(s->contact))) != 0) ||
         (rc = pm_fbar_create(s)) != 0 ||
         (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
         goto fail;
+    if (s->mb)
+        pm_multibody_copy_conditions(s->mb, &s->nd);
     /* meshfree points are not binned by cell, and RKPM's particles are its nodes: never reordered */
     s->sort_interval = meshfree ? 0 : 50;
     s->perm = malloc((s->p.cap ? s->p.cap : 1) * sizeof(uint32_t));
@@ -175,7 +187,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         rc = PM_EINPUT;
         goto fail;
     }
-    if ((rc = pm_flow_start(s)) != 0)
+    if ((rc = pm_flow_start(s)) != 0 || (rc = pm_loads_create(s, &s->loads)) != 0)
         goto fail;
     s->dt_next = c->analysis.dt > 0 ? c->analysis.dt : pm_sim_stable_dt(s);
     *out = s;
@@ -204,7 +216,9 @@ void pm_sim_destroy(pm_sim *s)
     free(s->iscratch);
     free_nodal(&s->nd);
     pm_contact_destroy(s->contact);
+    pm_multibody_destroy(s->mb);
     pm_flow_destroy(s->flow);
+    pm_loads_destroy(s->loads);
     pm_grid_free(&s->grid);
     free(s);
 }

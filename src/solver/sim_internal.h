@@ -20,6 +20,7 @@ typedef struct pm_nodal {
     double *force;       /**< total force (internal + external), 2 per node */
     double *acc;         /**< acceleration, 2 per node */
     uint8_t *fixed;      /**< bit 0: x prescribed, bit 1: y prescribed */
+    size_t n_all;        /**< entries of each array: grid nodes x body fields (contact/multibody.h) */
     double *vfix;        /**< prescribed velocity, 2 per node */
     int n_threads;       /**< scatter buffers for OpenMP threads beyond the first */
     double *scratch;     /**< (n_threads - 1) * 5 * n_nodes doubles: mass, mom/force */
@@ -27,7 +28,8 @@ typedef struct pm_nodal {
     struct pm_timed_bc {
         int set;         /**< grid node set */
         unsigned dirs;   /**< components */
-        double until;    /**< time after which the nodes are held (velocity zero) */
+        double until;    /**< time after which the nodes are held (velocity zero), or released */
+        int release;     /**< 1: a fixed condition whose components become free at `until` */
         int done;        /**< 1 once switched */
     } *timed;
 } pm_nodal;
@@ -82,6 +84,8 @@ struct pm_sim {
     int n_blocks;        /**< colour scatter: blocks in use (0: not cut yet) */
     int blocks_ok;       /**< colour scatter: no two same-colour blocks share a node at this step */
     struct pm_flow *flow; /**< sources and sinks (solver/flow.h; NULL when the case has none) */
+    struct pm_loads *loads; /**< forces on particle sets (solver/loads.h; NULL when the case has none) */
+    struct pm_multibody *mb; /**< body fields of contact_pairs (contact/multibody.h; NULL: one field) */
 };
 
 /**

@@ -104,5 +104,18 @@ check "one picture per frame" sh -c "[ \$(ls pics/q_*.png | wc -l) -eq $frames ]
 expect_exit 2 "render an unknown field" "$PMECH" render disks.out --field nonsense -o pics --quiet
 check "lists the fields" has "deviatoric_strain" err.txt
 
+# Body-body contact: a pair naming no body is refused with its key path; a short run writes the
+# force between the pair.
+sed 's/"probes": \[/"contact_pairs": [ { "bodies": ["lower", "uper"], "law": "frictionless" } ],\n  "probes": [/' "$SRC/examples/elastic_disks/case.json" > pair_bad.json
+expect_exit 2 "a contact pair naming no body" "$PMECH" run pair_bad.json -o pair_bad.out --quiet
+check "names contact_pairs[0].bodies[1] and the groups" sh -c 'grep -q "contact_pairs\[0\].bodies\[1\]" err.txt && grep -q "uper" err.txt && grep -q "lower, upper" err.txt'
+sed 's/"probes": \[/"contact_pairs": [ { "bodies": ["lower", "upper"], "law": "coulomb", "friction": 0.2 } ],\n  "probes": [/; s/"end_time": 3.5/"end_time": 1.3/; s/, "pictures": "speed"//' "$SRC/examples/elastic_disks/case.json" > pair.json
+expect_exit 0 "disks with a Coulomb contact pair" "$PMECH" run pair.json -o pair.out --quiet
+check "contact_forces.csv header" sh -c 'head -1 pair.out/contact_forces.csv | grep -q "^time,first,second,fx,fy$"'
+check "the disks push each other apart" python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('pair.out/contact_forces.csv')))
+sys.exit(0 if rows[0]['first'] == 'lower' and min(float(r['fx']) + float(r['fy']) for r in rows) < 0 else 1)"
+
 if [ $fail -eq 0 ]; then echo "all CLI checks passed"; fi
 exit $fail

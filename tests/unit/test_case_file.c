@@ -358,6 +358,46 @@ static void driver_files_load(void **st)
     remove("driver_test.json");
 }
 
+/* obstacles[]: kinds, velocity functions, and every bad value named by its key path */
+static void obstacles_are_read_and_checked(void **st)
+{
+    (void)st;
+    const char *at = "  \"output\": {";
+    pm_case c;
+    assert_int_equal(load_edit(at,
+                               "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0.1], [1, 0]],"
+                               " \"friction\": 0.3, \"velocity\": [1, { \"table\": [[0, 0], [1, 2]] }] },"
+                               " { \"name\": \"roller\", \"type\": \"circle\", \"center\": [0.5, 0.2], \"radius\": 0.1,"
+                               " \"law\": \"penalty\", \"friction\": \"no_slip\" } ],\n  \"output\": {",
+                               &c),
+                     PM_OK);
+    assert_int_equal(c.n_obstacles, 2);
+    assert_string_equal(c.obstacles[0].name, "obstacle0");
+    assert_true(c.obstacles[0].type == PM_OBSTACLE_POLYLINE && c.obstacles[0].n_points == 2);
+    assert_true(c.obstacles[0].friction == 0.3 && c.obstacles[0].law == PM_OBSTACLE_NODAL);
+    assert_true(c.obstacles[0].velocity[1].kind == PM_TIMEFN_TABLE && c.obstacles[0].velocity[1].n == 2);
+    assert_true(isinf(c.obstacles[1].friction) && c.obstacles[1].law == PM_OBSTACLE_PENALTY);
+    pm_case_free(&c);
+    EXPECT(at, "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0.1]] } ],\n  \"output\": {",
+           "obstacles[0].points", "at least 2 points");
+    EXPECT(at, "  \"obstacles\": [ { \"type\": \"circle\", \"center\": [5, 5], \"radius\": 0.1 } ],\n  \"output\": {",
+           "obstacles[0]", "outside the grid");
+    EXPECT(at,
+           "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0], [1, 0]], \"friction\": -0.1 } ],\n"
+           "  \"output\": {",
+           "obstacles[0].friction", "-0.1", "\"no_slip\"");
+    EXPECT(at,
+           "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0], [1, 0]],"
+           " \"velocity\": [0, { \"table\": [[0, 0], [2, 1], [1, 3]] }] } ],\n  \"output\": {",
+           "obstacles[0].velocity[1].table[2]", "not after");
+    EXPECT(at, "  \"obstacles\": [ { \"type\": \"square\" } ],\n  \"output\": {", "obstacles[0].type", "square");
+    /* loads[]: one set, a force per component */
+    EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"min\": [0, 0], \"max\": [1, 1], \"force\": [0, 1] } ],\n"
+           "  \"output\": {", "loads[0]", "either \"nearest\"");
+    EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"force\": [0, { \"value\": 1 }] } ],\n  \"output\": {",
+           "loads[0].force[1].ramp_time", "missing");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -373,6 +413,7 @@ int main(void)
         cmocka_unit_test(strength_reduction_is_checked),
         cmocka_unit_test(never_crashes_on_truncations),
         cmocka_unit_test(driver_files_load),
+        cmocka_unit_test(obstacles_are_read_and_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -163,7 +163,7 @@ static void implicit_not_yet(void **st)
 /* A 4 x 2 quad grid over [0, 1] x [0, 0.5] with a block on its floor and the given conditions. */
 static pm_sim *small_sim(pm_case *c, const char *method, const char *shape, const char *bcs)
 {
-    char text[2048];
+    char text[4096];
     snprintf(text, sizeof text,
              "{ \"dimension\": 2, \"method\": \"%s\", \"shape_function\": \"%s\","
              "  \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": 0.01, \"dt\": 1e-4,"
@@ -175,7 +175,8 @@ static pm_sim *small_sim(pm_case *c, const char *method, const char *shape, cons
              "               \"shape\": { \"type\": \"rectangle\", \"min\": [0.0, 0.0], \"max\": [0.75, 0.25] } } ],"
              "  \"boundary_conditions\": [ %s ] }",
              method, shape, bcs);
-    assert_int_equal(pm_case_load_buffer(text, strlen(text), "contact.json", c), PM_OK);
+    if (pm_case_load_buffer(text, strlen(text), "contact.json", c) != PM_OK)
+        fail_msg("%s", pm_error_message());
     pm_sim *s = NULL;
     int rc = pm_sim_create(c, &s, 1);
     if (rc)
@@ -261,12 +262,17 @@ static void gmm_walls(void **st)
     assert_int_equal(ct->surface[0].kind, PM_CONTACT_WALL);
     assert_true(ct->surface[0].guard && ct->surface[0].mu == 0.0 && ct->surface[0].axis == 0);
     assert_true(ct->surface[1].kind == PM_CONTACT_WALL && !ct->surface[1].guard && ct->surface[1].axis == 1);
-    /* GMM nodes: the corners of the 3 x 1 cells the block fills; 2 on x = 0, 4 on y = 0 */
+    /* GMM nodes: the corners of the 3 x 1 cells the block fills; 2 on x = 0, 4 on y = 0 touch */
     assert_int_equal(s->grid.n_nodes, 8);
     size_t on_left = 0, on_floor = 0;
     for (size_t k = 0; k < ct->n_node; k++) {
         const pm_contact_node *cn = &ct->node[k];
         const double *x = s->grid.x + PM_DIM * cn->node;
+        /* a wall also lists the nodes within reach of it, with their distance as the gap until the
+         * particles' gaps replace it; those on it have gap 0 */
+        assert_true(cn->gap <= ct->reach);
+        if (cn->gap > 0)
+            continue;
         if (cn->surface == 0) {
             on_left++;
             assert_true(x[0] == 0.0 && cn->normal[0] == -1.0 && cn->normal[1] == 0.0);
@@ -284,6 +290,80 @@ static void gmm_walls(void **st)
     pm_case_free(&c);
 }
 
+/* Obstacles: placed at time t by the integral of their velocity; signed distances and normals of a
+ * circle, a polyline (material on its left) and a polygon (material outside) */
+static void obstacles_move_and_measure(void **st)
+{
+    (void)st;
+    pm_case c;
+    pm_sim *s = small_sim(&c, "mpm", "linear",
+                          "], \"obstacles\": ["
+                          "{ \"type\": \"circle\", \"center\": [0.5, 0.4], \"radius\": 0.05,"
+                          "  \"velocity\": [{ \"value\": 2, \"ramp_time\": 0.1 }, 0] },"
+                          "{ \"type\": \"polyline\", \"points\": [[0, 0.1], [1, 0.1], [1, 0.5]] },"
+                          "{ \"type\": \"polygon\", \"points\": [[0.1, 0.3], [0.1, 0.4], [0.3, 0.4], [0.3, 0.3]],"
+                          "  \"law\": \"penalty\" }");
+    pm_contact *ct = s->contact;
+    assert_int_equal(pm_contact_n_surfaces(ct), 3);
+    pm_contact_detect(ct, &s->grid, 0.2);
+    const pm_contact_surface *circ = &ct->surface[0], *line = &ct->surface[1], *poly = &ct->surface[2];
+    NEAR(circ->shift[0], 0.5 * 2 * 0.1 + 2 * 0.1); /* the ramp's triangle, then 2 m/s for 0.1 s */
+    NEAR(circ->vel[0], 2.0);
+    double n[PM_DIM];
+    const double right_of_circle[PM_DIM] = {0.8 + 0.1, 0.4};
+    NEAR(pm_contact_distance(ct, circ, right_of_circle, n), 0.05);
+    NEAR(n[0], -1.0);
+    /* the polyline runs along y = 0.1 then up x = 1: the material is left of it (above, then left) */
+    const double above[PM_DIM] = {0.5, 0.25}, below[PM_DIM] = {0.5, 0.05}, left[PM_DIM] = {0.9, 0.3};
+    NEAR(pm_contact_distance(ct, line, above, n), 0.15);
+    NEAR(n[1], -1.0);
+    NEAR(pm_contact_distance(ct, line, below, n), -0.05);
+    NEAR(n[1], -1.0); /* still pushed up, out of the wall */
+    NEAR(pm_contact_distance(ct, line, left, n), 0.1);
+    NEAR(n[0], 1.0);
+    /* the polygon is clockwise here: outside positive, inside negative with the normal deeper in */
+    const double outside[PM_DIM] = {0.2, 0.45}, inside[PM_DIM] = {0.2, 0.38};
+    NEAR(pm_contact_distance(ct, poly, outside, n), 0.05);
+    NEAR(n[1], -1.0);
+    NEAR(pm_contact_distance(ct, poly, inside, n), -0.02);
+    NEAR(n[1], -1.0);
+    assert_true(poly->law == PM_CONTACT_LAW_PENALTY_COULOMB && poly->stiffness > 0);
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+}
+
+/* The laws act on the velocity relative to a moving obstacle: a node moving with it is left alone,
+ * one approaching it faster is brought to its normal velocity. */
+static void laws_act_relative_to_a_moving_obstacle(void **st)
+{
+    (void)st;
+    pm_case c;
+    pm_sim *s = small_sim(&c, "mpm", "linear",
+                          "], \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0.4], [1, 0.4]],"
+                          "  \"material_side\": \"right\", \"velocity\": [0, -1] }");
+    pm_contact *ct = s->contact;
+    pm_contact_detect(ct, &s->grid, 0.0);
+    /* one entry by hand: node 0, touching (gap 0), normal up into the obstacle */
+    ct->n_node = 1;
+    ct->node[0].node = 0;
+    ct->node[0].surface = 0;
+    ct->node[0].normal[0] = 0.0;
+    ct->node[0].normal[1] = 1.0;
+    ct->node[0].gap = 0.0;
+    ct->node[0].mu = 0.0;
+    double mass = 1.0, v0[PM_DIM] = {0}, v[PM_DIM] = {0.3, -1.0}, acc[PM_DIM], vfix[PM_DIM] = {0};
+    uint8_t fixed = 0;
+    pm_contact_field f = {&mass, v0, v, acc, &fixed, vfix, 0.0};
+    pm_contact_apply(ct, f, 1e-3, 1e-3);
+    NEAR(v[1], -1.0); /* moving down with the obstacle: not approaching it */
+    v[1] = 0.5;       /* approaching at 1.5 relative to it */
+    pm_contact_apply(ct, f, 1e-3, 1e-3);
+    NEAR(v[1], -1.0);
+    NEAR(v[0], 0.3);  /* frictionless */
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -296,6 +376,8 @@ int main(void)
         cmocka_unit_test(mpm_friction_side_and_line),
         cmocka_unit_test(mpm_friction_needs_a_normal),
         cmocka_unit_test(gmm_walls),
+        cmocka_unit_test(obstacles_move_and_measure),
+        cmocka_unit_test(laws_act_relative_to_a_moving_obstacle),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -379,6 +379,53 @@ static void two_threads_match_one(void **state)
     pm_case_free(&c2);
 }
 
+/* A fixed condition with `until` is a gate: a block resting on the line y = 0.5 under gravity stays
+ * there while the gate holds (an outlet sink on the same line takes nothing), and falls through it
+ * freely once it is released at t = 0.1 (its top, 0.2 above the line, crosses it 0.2 s later at
+ * g = 10). A gate that shares a held component with another condition is refused, as is a gate in
+ * an implicit analysis (whose unknowns are numbered once). */
+static void released_fixed_condition_opens_a_gate(void **state)
+{
+    (void)state;
+    const char *gate = ", \"bodies\": [ { \"material\": \"m\", \"shape\": { \"type\": \"rectangle\","
+                       " \"min\": [0.3, 0.5], \"max\": [0.7, 0.7] } } ],"
+                       " \"sinks\": [ { \"type\": \"outlet\", \"boundary\": { \"y\": 0.5, \"normal\": [0, -1] } } ],"
+                       " \"boundary_conditions\": [ { \"type\": \"fixed\", \"boundary\": { \"y\": 0.5 },"
+                       " \"directions\": [\"y\"], \"until\": 0.1 } %s ]";
+    char rest[1024];
+    snprintf(rest, sizeof rest, gate, "");
+    pm_sim *s = make(0.45, 1e-3, -10, rest);
+    const pm_particles *p = pm_sim_particles(s);
+    assert_int_equal(p->n, 8 * 4);
+    assert_int_equal(run_to(s, 0.099), PM_OK);
+    assert_int_equal(p->n, 32);
+    assert_int_equal(run_to(s, 0.45), PM_OK);
+    assert_int_equal(p->n, 0);
+    done(s);
+    /* sharing the node (0, 0.5) in y with a fixed side */
+    snprintf(rest, sizeof rest, gate,
+             ", { \"type\": \"fixed\", \"boundary\": \"x_min\", \"directions\": [\"x\", \"y\"] }");
+    char buf[8192];
+    fill(buf, sizeof buf, 0.45, 1e-3, -10, rest);
+    assert_int_equal(pm_case_load_buffer(buf, strlen(buf), "case.json", &cs), PM_OK);
+    s = NULL;
+    assert_int_equal(pm_sim_create(&cs, &s, 1), PM_EINPUT);
+    assert_null(s);
+    assert_non_null(strstr(pm_error_message(), "boundary_conditions[0]: the node at (0, 0.5) is also held in y"));
+    pm_case_free(&cs);
+    const char *implicit = "{ \"dimension\": 2, \"analysis\": { \"type\": \"implicit\", \"end_time\": 1, \"dt\": 0.1 },"
+                           " \"grid\": { \"type\": \"rectangle\", \"size\": [1, 1], \"cells\": [2, 2] },"
+                           " \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1,"
+                           " \"youngs_modulus\": 1, \"poisson_ratio\": 0 } ],"
+                           " \"bodies\": [ { \"material\": \"m\", \"shape\": { \"type\": \"rectangle\","
+                           " \"min\": [0, 0], \"max\": [1, 1] } } ],"
+                           " \"boundary_conditions\": [ { \"type\": \"fixed\", \"boundary\": \"y_min\","
+                           " \"directions\": [\"y\"], \"until\": 0.5 } ] }";
+    assert_int_equal(pm_case_load_buffer(implicit, strlen(implicit), "case.json", &cs), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "case.json: boundary_conditions[0].until: a fixed condition can be "
+                                               "released only in an 'explicit' analysis"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -392,6 +439,7 @@ int main(void)
         cmocka_unit_test(empty_grid_waits_for_release),
         cmocka_unit_test(per_particle_work_arrays_cover_releases),
         cmocka_unit_test(two_threads_match_one),
+        cmocka_unit_test(released_fixed_condition_opens_a_gate),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -6,6 +6,12 @@
  * v0 = -0.1 m/s: no particle crosses a cell boundary, so linear MPM is a finite-element solution with
  * particle quadrature; Gibbs ringing follows each jump, so plateau means are taken away from the
  * jumps (0.25 L/c margins) and must be within 2 % of +-v0 for two periods (five plateaus, to 9 L/c).
+ * The pointwise deviation inside the same windows is reported per plateau and its largest value is
+ * judged within 50 % of |v0|: measured 21, 28, 34, 42 % (MUSL) on plateaus 2 to 5, the ringing of the
+ * linear grid's dispersion, which spreads every jump further the longer the wave has travelled (the
+ * plateau means stay within 0.5 %). 50 % is not a bound the discretisation has to meet by theory but
+ * the line a wrong answer crosses: a jump that arrives 0.25 L/c early or late (wave speed 3 % off at
+ * 9 L/c), a reflection of the wrong sign or a lost one puts a deviation of 2 |v0| inside a window.
  * v0 = -5 m/s: the free end crosses cells and linear MPM is noisy (seed 003 Fig. 6). The RMS error
  * over two periods is reported for three grid sizes; it does not fall with h (the noise comes from
  * every crossing, and finer grids have more of them). It is judged only against a loose bound (50 %
@@ -16,6 +22,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+/* Largest pointwise deviation from the square wave allowed inside the plateau windows (see the top). */
+#define RINGING_TOL 0.5
 
 static double exact(double t, double v0, double T1)
 {
@@ -102,13 +111,15 @@ int main(int argc, char **argv)
         plot(&h, v0, T1, name, title);
         /* plateaus [k T1 + margin, (k + 2) T1 - margin], the first one starting at 0 */
         const double lo[5] = {0.0, 1.0, 3.0, 5.0, 7.0}, hi[5] = {1.0, 3.0, 5.0, 7.0, 9.0};
+        double worst = 0, late = 0;
         for (int k = 0; k < 5; k++) {
-            double sum = 0;
+            double sum = 0, dev = 0;
             int cnt = 0;
             for (size_t i = 0; i < h.n; i++) {
                 double t = h.tv[2 * i] / T1;
                 if (t > lo[k] + (k ? 0.25 : 0.05) && t < hi[k] - 0.25) {
                     sum += h.tv[2 * i + 1];
+                    dev = fmax(dev, fabs(h.tv[2 * i + 1] - exact(h.tv[2 * i], v0, T1)) / fabs(v0));
                     cnt++;
                 }
             }
@@ -116,7 +127,17 @@ int main(int argc, char **argv)
             char q[96];
             snprintf(q, sizeof q, "%s plateau %d mean v (m/s), v0=-0.1", schemes[sc], k + 1);
             ok &= vu_report("Dyka bar", q, mean, ref, (mean - ref) / fabs(v0), 0.02, secs);
+            snprintf(q, sizeof q, "%s plateau %d largest pointwise abs(v - exact) / abs(v0)", schemes[sc], k + 1);
+            vu_report("Dyka bar", q, dev, 0, dev, -1, 0);
+            worst = fmax(worst, dev);
+            if (k >= 3)
+                late = fmax(late, dev);
         }
+        char q[112];
+        snprintf(q, sizeof q, "%s largest pointwise ringing / abs(v0), plateaus 1-5", schemes[sc]);
+        ok &= vu_report("Dyka bar", q, worst, 0, worst, RINGING_TOL, 0);
+        snprintf(q, sizeof q, "%s largest pointwise ringing / abs(v0), plateaus 4-5", schemes[sc]);
+        vu_report("Dyka bar", q, late, 0, late, -1, 0);
         free(h.tv);
     }
     const int cells[3] = {55, 110, 220};

@@ -12,8 +12,9 @@
  * stretch and the MLS moment matrix becomes nearly singular (gradients ten times their normal size,
  * shape functions of -0.6), which blows a run up in a few steps.
  *
- * There is no analytic run-out; the reference is the MPM run of the same case (same points,
- * material, initial stress, CFL). Judged:
+ * There is no analytic run-out and no published number (seed 000 and Bui et al. 2008 give pictures
+ * only); the reference is the MPM run of the same case (same points, material, initial stress, CFL),
+ * so this is a comparison of methods, not a verification against the physics. Judged:
  *  - GMM-MLS and GMM-LME reach t = 2 s with pmech's default adaptive cloud;
  *  - their run-out (largest x of the points) and the height of the soil at the wall (largest y of
  *    the points within 0.1 m of it) at t = 2 s within 10 % of MPM's. Why 10 %: the methods differ in

@@ -1,0 +1,120 @@
+/*
+ * Which nodes touch which surface (contact.h): the candidates near every surface at time t, then the
+ * gap of each from the material's surface, measured from the particles near the node, so a node acts
+ * when the material reaches the surface and not when the node's cell does.
+ */
+#include "contact/contact.h"
+
+#include <math.h>
+
+/* Place a moving obstacle at time t: its displacement is the integral of its velocity. */
+static void place(pm_contact_surface *sf, double t)
+{
+    for (int d = 0; d < PM_DIM; d++) {
+        sf->shift[d] = sf->motion ? pm_timefn_integral(&sf->motion[d], t) : 0.0;
+        sf->vel[d] = sf->motion ? pm_timefn_value(&sf->motion[d], t) : 0.0;
+    }
+}
+
+/* Every node within reach of a surface that is not a node set (or inside it). */
+static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
+{
+    const pm_contact_surface *sf = &ct->surface[k];
+    for (size_t I = 0; I < g->n_nodes && ct->n_node < ct->cap; I++) {
+        double n[PM_DIM];
+        const double sd = pm_contact_distance(ct, sf, g->x + PM_DIM * I, n);
+        if (sd > ct->reach)
+            continue;
+        pm_contact_node *cn = &ct->node[ct->n_node++];
+        cn->node = (int32_t)I;
+        cn->surface = k;
+        for (int d = 0; d < PM_DIM; d++)
+            cn->normal[d] = n[d];
+        cn->mu = sf->mu;
+        cn->gap = sd;
+    }
+}
+
+void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
+{
+    if (!ct)
+        return;
+    ct->n_node = ct->n_fixed; /* node sets keep their nodes; they act where they carry mass */
+    for (size_t e = 0; e < ct->n_fixed; e++)
+        ct->node[e].gap = 0.0;
+    for (size_t k = 0; k < ct->n_surfaces; k++) {
+        pm_contact_surface *sf = &ct->surface[k];
+        place(sf, t);
+        if (sf->kind != PM_CONTACT_NODE_SET)
+            near_nodes(ct, (int32_t)k, g);
+    }
+}
+
+/* The particle's half-size: the radius of the circle of its area (its seeding box of half-sides hsize,
+ * times det F). A box's corner would reach further along a slanted normal, but the corners of the boxes
+ * along a slanted face stick out of the body seeded there; the circle does not. */
+static inline double half_size(const pm_particles *p, size_t i)
+{
+#if PM_DIM != 2
+#error "the particle's extent is written for the in-plane F"
+#endif
+    if (!p->hsize)
+        return 0.0;
+    const double *F = p->F + PM_NF * i, *h = p->hsize + PM_DIM * i;
+    const double J = F[PM_FXX] * F[PM_FYY] - F[PM_FXY] * F[PM_FYX];
+    return J > 0 ? sqrt(h[0] * h[1] * J) : 0.0;
+}
+
+/* A particle sets the gap of the contact nodes whose shape function at it is at least this fraction of
+ * the largest one (a particle midway between two nodes sets both). */
+static const double VOTE = 0.5;
+
+/* The gaps of the entries [first, last) of surface k from the particles near it. */
+static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, const pm_approx *a,
+                         const pm_particles *p)
+{
+    const pm_contact_surface *sf = &ct->surface[k];
+    for (size_t e = first; e < last; e++) {
+        ct->slot[ct->node[e].node] = (int32_t)e;
+        ct->node[e].gap = INFINITY; /* no particle in the node's support: nothing to touch */
+    }
+    pm_stencil st;
+    for (size_t i = 0; i < p->n; i++) {
+        double n[PM_DIM];
+        const double sd = pm_contact_distance(ct, sf, p->x + PM_DIM * i, n);
+        if (sd > ct->reach || pm_approx_eval(a, p, i, &st) != 0)
+            continue;
+        /* the penalty law pushes on the particles' centres: its force grows from the first step on,
+         * and a body seeded against the obstacle starts with no energy stored in it */
+        const double gap = sf->law == PM_CONTACT_LAW_PENALTY_COULOMB ? sd : sd - half_size(p, i);
+        /* the particle moves mostly with its nearest contact nodes: it sets their gap only, so that a
+         * node is not held by material at the far edge of its support (ahead of a rolling contact) */
+        double wmax = 0.0;
+        for (int j = 0; j < st.n; j++)
+            if (ct->slot[st.node[j]] >= 0 && st.N[j] > wmax)
+                wmax = st.N[j];
+        for (int j = 0; wmax > 0 && j < st.n; j++) {
+            const int32_t e = ct->slot[st.node[j]];
+            if (e >= 0 && st.N[j] >= VOTE * wmax && gap < ct->node[e].gap)
+                ct->node[e].gap = gap;
+        }
+    }
+    for (size_t e = first; e < last; e++)
+        ct->slot[ct->node[e].node] = -1;
+}
+
+void pm_contact_gaps(pm_contact *ct, const pm_approx *a, const pm_particles *p)
+{
+    if (!ct || !ct->slot)
+        return;
+    /* node sets hold their entries in creation order, the others in detection order: both by surface */
+    size_t e = 0;
+    while (e < ct->n_node) {
+        const int32_t k = ct->node[e].surface;
+        size_t end = e;
+        while (end < ct->n_node && ct->node[end].surface == k)
+            end++;
+        surface_gaps(ct, (size_t)k, e, end, a, p);
+        e = end;
+    }
+}
