@@ -1,5 +1,7 @@
-/* Files appear complete or not at all: everything is written to "<path>.tmp" and renamed over
- * the final name (rename is atomic within one directory on POSIX file systems). */
+/* Files appear complete or not at all: everything is written to "<path>.tmp", forced to the disk
+ * (fsync) and renamed over the final name (rename is atomic within one directory on POSIX file systems).
+ * Without the fsync a power cut soon after the rename can leave the new name on an empty file: a
+ * frame, particles.pvd or run.json that no reader can open. Its cost is in docs/performance.md. */
 #include "pmech/error.h"
 #include "io/output.h"
 #include "io/vtu_write.h"
@@ -10,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 FILE *pm_atomic_fopen(const char *path, char *tmp, size_t tmp_size)
 {
@@ -31,6 +34,8 @@ int pm_atomic_fclose(FILE *f, const char *tmp, const char *path, int ok)
         err = errno;
     if (ok && !err && ferror(f))
         err = EIO;
+    if (ok && !err && fsync(fileno(f)) != 0)
+        err = errno;
     if (fclose(f) != 0 && ok && !err)
         err = errno;
     if (ok && !err && rename(tmp, path) != 0) {
