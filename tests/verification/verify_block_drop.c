@@ -54,15 +54,7 @@ static double soft_drop(int obstacle, double *secs)
     }
     const double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);
-    while (s->t < c.analysis.end_time - 1e-12) {
-        double dt = vu_dt(s);
-        if (s->t + dt > c.analysis.end_time)
-            dt = c.analysis.end_time - s->t;
-        if (pm_explicit_step(s, dt) != 0) {
-            fprintf(stderr, "%s\n", pm_error_message());
-            exit(1);
-        }
-    }
+    vu_run_to(s, c.analysis.end_time);
     double v[2], x[2];
     vu_body_mean(s, obstacle ? 0 : 1, v, x);
     *secs = vu_now() - t0;

@@ -55,15 +55,7 @@ static double run(const trial *tr, double *travel)
     pm_sim *s = vu_sim(&c, 1);
     double v[2], x0[2], x[2];
     vu_body_mean(s, 1, v, x0);
-    while (s->t < c.analysis.end_time - 1e-12) {
-        double dt = vu_dt(s);
-        if (s->t + dt > c.analysis.end_time)
-            dt = c.analysis.end_time - s->t;
-        if (pm_explicit_step(s, dt) != 0) {
-            fprintf(stderr, "%s\n", pm_error_message());
-            exit(1);
-        }
-    }
+    vu_run_to(s, c.analysis.end_time);
     vu_body_mean(s, 1, v, x);
     *travel = x[0] - x0[0];
     pm_sim_destroy(s);

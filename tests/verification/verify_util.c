@@ -46,6 +46,26 @@ double vu_dt(const pm_sim *s)
     return s->c->analysis.cfl * s->grid.h_min / s->max_wave;
 }
 
+int vu_advance(pm_sim *s, double end)
+{
+    if (!(s->t < end - 1e-12))
+        return 0;
+    double dt = vu_dt(s);
+    if (s->t + dt > end)
+        dt = end - s->t;
+    if (pm_explicit_step(s, dt) != 0) {
+        fprintf(stderr, "%s\n", pm_error_message());
+        exit(1);
+    }
+    return 1;
+}
+
+void vu_run_to(pm_sim *s, double end)
+{
+    while (vu_advance(s, end))
+        ;
+}
+
 size_t vu_nearest(const pm_sim *s, double x, double y)
 {
     size_t best = 0;

@@ -22,6 +22,13 @@ pm_sim *vu_sim(const pm_case *c, int threads);
 /** Step size the run loop would take next (fixed or CFL). */
 double vu_dt(const pm_sim *s);
 
+/** One explicit step towards @p end (clipped to it); exits 1 with the error if the step fails.
+ *  Returns 0 without stepping once @p end is reached, else 1. */
+int vu_advance(pm_sim *s, double end);
+
+/** Explicit steps until @p end (vu_advance until it returns 0). */
+void vu_run_to(pm_sim *s, double end);
+
 /** Index of the particle nearest to @p x at the start (ties: lowest index). */
 size_t vu_nearest(const pm_sim *s, double x, double y);
 
