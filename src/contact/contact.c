@@ -29,6 +29,8 @@ void pm_contact_destroy(pm_contact *ct)
 {
     if (!ct)
         return;
+    for (size_t k = 0; k < ct->n_surfaces; k++)
+        free(ct->surface[k].node_impulse);
     free(ct->surface);
     free(ct->node);
     free(ct->points);
@@ -49,8 +51,12 @@ static int add_surface(pm_contact *ct, size_t more_nodes, pm_contact_surface **o
         ct->node = n;
         ct->cap += more_nodes;
     }
+    double *J = calloc((size_t)(1 + PM_DIM) * (ct->n_nodes ? ct->n_nodes : 1), sizeof *J);
+    if (!J)
+        return pm_error_set(PM_ENOMEM, "out of memory for the contact surfaces");
     *out = &ct->surface[ct->n_surfaces];
     memset(*out, 0, sizeof **out);
+    (*out)->node_impulse = J;
     (*out)->bc = (*out)->obstacle = -1;
     return (int)ct->n_surfaces++;
 }
@@ -80,6 +86,8 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
         for (int d = 0; d < PM_DIM; d++)
             cn->normal[d] = normal[d];
         cn->mu = mu;
+        cn->gap = 0.0;
+        cn->held = 0;
     }
     ct->n_node = ct->n_fixed;
     return k;

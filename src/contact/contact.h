@@ -29,9 +29,12 @@
  *                       summed over its nodes) is kept for pm_contact_force_of().
  *   pm_contact_project_normal
  *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
- *                       predictor): at entries in touch (gap <= 0) of nodal-law surfaces, the
- *                       approaching normal velocity only, no friction impulse (that one has been
- *                       applied to the end-of-step velocity), then the prescribed components.
+ *                       predictor): at the entries of nodal-law surfaces that the law held in
+ *                       this step, the normal velocity the law left them (approaching or
+ *                       separating: the particles moved with it, and the strain must agree); at the
+ *                       other entries in touch (gap <= 0), the approaching normal velocity only; no
+ *                       friction impulse (that one has been applied to the end-of-step velocity),
+ *                       then the prescribed components.
  *   pm_contact_implicit implicit and quasi-static steps: contact terms of the residual and tangent.
  *                       Not yet: it refuses a friction condition with the message of the run's own
  *                       check (obstacles are refused when the case is loaded), and adds nothing for
@@ -123,6 +126,9 @@ typedef struct pm_contact_surface {
                                   penetration */
     pm_contact_force f;      /**< over the last apply */
     pm_contact_force impulse;/**< the same terms times dt, summed over the applies since a reader reset it */
+    double *node_impulse;    /**< per node of the field, 1 + PM_DIM values: the normal and the tangential
+                                  impulse (as in impulse) the law gave that node since a reader reset
+                                  them: the wall's traction profile (pm_contact_profile) */
 } pm_contact_surface;
 
 /** A node touching a surface. */
@@ -132,6 +138,9 @@ typedef struct pm_contact_node {
     double normal[PM_DIM];   /**< outward unit normal at the node */
     double mu;               /**< friction coefficient */
     double gap;              /**< distance from the material's surface to the obstacle (< 0: penetration) */
+    int held;                /**< 1: the nodal law acted on it in this step's pm_contact_apply() (reset by
+                                  pm_contact_detect()) */
+    double vn_held;          /**< then: its normal velocity relative to the surface after the law */
 } pm_contact_node;
 
 /** The surfaces of a simulation and the nodes touching them. */
@@ -225,8 +234,10 @@ double pm_contact_distance(const pm_contact *ct, const pm_contact_surface *sf, c
  */
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc);
 
-/** Explicit steps, re-projected velocities: remove the approaching normal velocity at every contact
- *  node of @p f, then its prescribed components (no mass test, no impulse, no force). */
+/** Explicit steps, re-projected velocities: at every contact node of @p f that the nodal law held in
+ *  this step's apply, the normal velocity (relative to the surface) the law left it, whether the mapped
+ *  one approaches or separates; at the other nodes in touch, the approaching normal velocity removed;
+ *  then the prescribed components (no mass test, no impulse, no force). */
 void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f);
 
 /**
@@ -238,6 +249,38 @@ int pm_contact_implicit(const pm_contact *ct, const pm_case *c, struct pm_implic
 
 /** Surfaces (boundaries and obstacles) of @p ct (0 for NULL). */
 size_t pm_contact_n_surfaces(const pm_contact *ct);
+
+/** One station of a wall's traction profile. */
+typedef struct pm_contact_station {
+    double s;            /**< position along the wall: arc length from its start (see pm_contact_profile) */
+    double x[PM_DIM];    /**< the wall's point there (at the last detection's place) */
+    double normal;       /**< normal traction on the material, positive when the wall pushes it away */
+    double tangent;      /**< tangential traction on the material along the direction of increasing s */
+} pm_contact_station;
+
+/** Length of surface @p k: a polyline's or polygon's perimeter, a circle's circumference, the span of a
+ *  node set's nodes, a meshfree wall's side of the frame @p g. */
+double pm_contact_length(const pm_contact *ct, size_t k, const pm_grid *g);
+
+/** Stations of surface @p k's profile: about one per cell of @p g along it (at least one), evenly
+ *  spaced, both ends included on an open wall. */
+size_t pm_contact_profile_stations(const pm_contact *ct, size_t k, const pm_grid *g);
+
+/**
+ * The traction profile of surface @p k (force per unit length of wall, per unit thickness in plane
+ * runs): the per-node impulses since pm_contact_profile_reset(), each shared between the two stations
+ * either side of the node's position along the wall by nearness, divided by @p span (the time they were
+ * gathered over) and by each station's share of the wall (a spacing; half of one at an open wall's
+ * ends). Position along the wall: from the first point of a polyline or polygon along its points; on a
+ * circle counter-clockwise from its +x point; on a straight grid side or line from its lowest node (or
+ * the frame's side), upwards or rightwards. @p out holds pm_contact_profile_stations() entries.
+ * @return PM_OK, PM_EINPUT for a bad request
+ */
+int pm_contact_profile(const pm_contact *ct, size_t k, const pm_grid *g, double span, pm_contact_station *out,
+                       size_t n_out);
+
+/** Start gathering the per-node impulses of every surface afresh. */
+void pm_contact_profile_reset(pm_contact *ct);
 
 /** Resultant force of surface @p k over the last apply. @return PM_OK, PM_EINPUT for no such surface */
 int pm_contact_force_of(const pm_contact *ct, size_t k, pm_contact_force *out);

@@ -32,6 +32,7 @@ static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
             cn->normal[d] = n[d];
         cn->mu = sf->mu;
         cn->gap = sd;
+        cn->held = 0;
     }
 }
 
@@ -40,8 +41,10 @@ void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
     if (!ct)
         return;
     ct->n_node = ct->n_fixed; /* node sets keep their nodes; they act where they carry mass */
-    for (size_t e = 0; e < ct->n_fixed; e++)
+    for (size_t e = 0; e < ct->n_fixed; e++) {
         ct->node[e].gap = 0.0;
+        ct->node[e].held = 0;
+    }
     for (size_t k = 0; k < ct->n_surfaces; k++) {
         pm_contact_surface *sf = &ct->surface[k];
         place(sf, t);

@@ -100,6 +100,10 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
         sf->impulse.force[d] += m * dv[d];
         sf->impulse.tangent[d] += m * (dv[d] - dvn * cn->normal[d]);
     }
+    double *J = sf->node_impulse + (size_t)(1 + PM_DIM) * (size_t)cn->node;
+    J[0] -= m * dvn;
+    for (int d = 0; d < PM_DIM; d++)
+        J[1 + d] += m * (dv[d] - dvn * cn->normal[d]);
 }
 
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc)
@@ -109,8 +113,9 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
     for (size_t k = 0; k < ct->n_surfaces; k++)
         memset(&ct->surface[k].f, 0, sizeof ct->surface[k].f);
     for (size_t k = 0; k < ct->n_node; k++) {
-        const pm_contact_node *cn = &ct->node[k];
+        pm_contact_node *cn = &ct->node[k];
         const int32_t n = cn->node;
+        cn->held = 0;
         if (!(f.mass[n] > f.mass_floor))
             continue;
         pm_contact_surface *sf = &ct->surface[cn->surface];
@@ -135,6 +140,9 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
             for (int d = 0; d < PM_DIM; d++)
                 v[d] += sf->vel[d];
         }
+        cn->held = acted && sf->law == PM_CONTACT_LAW_NODAL_COULOMB;
+        if (cn->held)
+            cn->vn_held = dot(v, cn->normal) - (sf->motion ? dot(sf->vel, cn->normal) : 0.0);
         if (acted)
             add_force(sf, cn, f.mass[n], before, v, dt);
         constrain(&f, n, v);
@@ -151,12 +159,23 @@ void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f)
         const pm_contact_node *cn = &ct->node[k];
         const pm_contact_surface *sf = &ct->surface[cn->surface];
         /* only where the material touches; a penalty surface acts by its force alone */
-        if (cn->gap > 0 || sf->law == PM_CONTACT_LAW_PENALTY_COULOMB)
+        if ((cn->gap > 0 && !cn->held) || sf->law == PM_CONTACT_LAW_PENALTY_COULOMB)
             continue;
         double *v = f.v + PM_DIM * cn->node;
         for (int d = 0; sf->motion && d < PM_DIM; d++)
             v[d] -= sf->vel[d];
-        pm_contact_normal_only(cn->normal, v);
+        /* A node the law held in this step keeps the normal velocity the law left it: the particles
+         * moved with that one. Removing only an approaching normal velocity here, and keeping a
+         * separating one, turned every fluctuation of the mapped velocity (friction's stick and slip
+         * feed them) into a strain away from the wall that no particle's motion had: a ratchet that
+         * compressed a bin's fill sideways and raised its wall pressure 17-55 % above Janssen's. */
+        if (cn->held) {
+            const double dvn = dot(v, cn->normal) - cn->vn_held;
+            for (int d = 0; d < PM_DIM; d++)
+                v[d] -= dvn * cn->normal[d];
+        } else {
+            pm_contact_normal_only(cn->normal, v);
+        }
         for (int d = 0; sf->motion && d < PM_DIM; d++)
             v[d] += sf->vel[d];
         constrain(&f, cn->node, v);

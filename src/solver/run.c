@@ -6,6 +6,7 @@
 #include "solver/thread_governor.h"
 #include "flow.h"
 #include "forces_log.h"
+#include "walls_log.h"
 #include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
@@ -200,6 +201,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_forces_log forces = {0};
     if (!rc && out)
         rc = pm_forces_log_open(&forces, s, dir);
+    pm_walls_log walls = {0};
+    if (!rc && out)
+        rc = pm_walls_log_open(&walls, s, dir);
     if (!rc && out && s->mb)
         rc = pm_multibody_log_open(s->mb, c, dir);
     double particle_steps = 0; /* the count changes with sources and sinks */
@@ -243,6 +247,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             }
             if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
                 rc = write_frame(out, s, dir, &frame);
+                if (!rc)
+                    rc = pm_walls_log_frame(&walls, s);
                 last_frame_t = s->t;
                 /* computed, not stepped: adding an interval below the spacing of doubles near t would
                  * leave next_frame where it is for ever */
@@ -262,6 +268,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     }
     if (!rc && out && last_frame_t < s->t) {
         rc = write_frame(out, s, dir, &frame);
+        if (!rc)
+            rc = pm_walls_log_frame(&walls, s);
         if (!rc)
             rc = write_energy(out, s);
     } else if (rc == PM_ESIM && out && c->analysis.type != PM_ANALYSIS_EXPLICIT && last_frame_t < s->t) {
@@ -288,6 +296,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     if (!rc && rc_log)
         rc = rc_log;
     rc_log = pm_forces_log_close(&forces);
+    if (!rc && rc_log)
+        rc = rc_log;
+    rc_log = pm_walls_log_close(&walls);
     if (!rc && rc_log)
         rc = rc_log;
     rc_log = pm_multibody_log_close(s->mb);
