@@ -154,7 +154,11 @@ typedef struct pm_case_particle_load {
     int nearest;                  /**< 1: the particle nearest to point; 0: the particles in [min, max] */
     double point[2];
     double min[2], max[2];
-    pm_timefn force[2];           /**< total force per component (N per unit thickness; per radian axisymmetric) */
+    pm_timefn force[2];           /**< total force per component (N per unit thickness; per radian axisymmetric);
+                                       a grid line's: force per unit length of the line */
+    int line_axis;                /**< -1: a particle set; 0: the grid line x = line_value; 1: y = line_value */
+    double line_value;
+    double line_range[2];         /**< the loaded part of the line, along the other axis (from, to) */
 } pm_case_particle_load;
 
 /** probes[] */

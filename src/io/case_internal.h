@@ -42,6 +42,7 @@ typedef enum pm_case_keyset_id {
     PM_KEYS_OBSTACLE,
     PM_KEYS_TIMEFN,
     PM_KEYS_LOAD,
+    PM_KEYS_LOAD_LINE,
     PM_KEYS_COUNT
 } pm_case_keyset_id;
 

@@ -42,7 +42,8 @@ static const char *const pair_keys[] = {"bodies", "law", "friction", "separation
 static const char *const obstacle_keys[] = {"name", "type", "points", "center", "radius", "material_side", "law",
                                             "friction", "penalty_factor", "velocity", NULL};
 static const char *const timefn_keys[] = {"value", "ramp_time", "table", NULL};
-static const char *const load_keys[] = {"name", "nearest", "min", "max", "force", NULL};
+static const char *const load_keys[] = {"name", "nearest", "min", "max", "force", "grid_line", "force_per_length", NULL};
+static const char *const load_line[] = {"x", "y", "from", "to", NULL};
 
 static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_TOP] = {"", NULL, top_keys},
@@ -72,6 +73,7 @@ static const pm_case_keyset table[PM_KEYS_COUNT] = {
     [PM_KEYS_OBSTACLE] = {"obstacles[]", NULL, obstacle_keys},
     [PM_KEYS_TIMEFN] = {"obstacles[].velocity[]", NULL, timefn_keys},
     [PM_KEYS_LOAD] = {"loads[]", NULL, load_keys},
+    [PM_KEYS_LOAD_LINE] = {"loads[].grid_line", NULL, load_line},
 };
 
 const char *const *pm_case_keys(pm_case_keyset_id id) { return table[id].keys; }

@@ -396,6 +396,31 @@ static void obstacles_are_read_and_checked(void **st)
            "  \"output\": {", "loads[0]", "either \"nearest\"");
     EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"force\": [0, { \"value\": 1 }] } ],\n  \"output\": {",
            "loads[0].force[1].ramp_time", "missing");
+    /* loads[] on a grid line: a force per length, the line's keys */
+    assert_int_equal(load_edit(at,
+                                 "  \"loads\": [ { \"grid_line\": { \"y\": 0.5, \"from\": 0.1 },"
+                                 " \"force_per_length\": [0, -1000] } ],\n  \"output\": {",
+                                 &c),
+                     PM_OK);
+    assert_true(c.loads[0].line_axis == 1 && c.loads[0].line_value == 0.5 && c.loads[0].line_range[0] == 0.1 &&
+                isinf(c.loads[0].line_range[1]));
+    pm_case_free(&c);
+    EXPECT(at, "  \"loads\": [ { \"grid_line\": { \"y\": 0.5 }, \"force\": [0, 1] } ],\n  \"output\": {",
+           "loads[0]", "\"force\" does not go with \"grid_line\"");
+    EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"force_per_length\": [0, 1] } ],\n  \"output\": {",
+           "loads[0]", "goes with \"grid_line\"");
+    EXPECT(at,
+           "  \"loads\": [ { \"grid_line\": { \"x\": 0.5, \"y\": 0.5 }, \"force_per_length\": [0, 1] } ],\n"
+           "  \"output\": {",
+           "loads[0].grid_line", "exactly one");
+    EXPECT(at,
+           "  \"loads\": [ { \"grid_line\": { \"y\": 0.5, \"from\": 2, \"to\": 1 }, \"force_per_length\": [0, 1] } ],\n"
+           "  \"output\": {",
+           "loads[0].grid_line", "from = 2");
+    EXPECT(at,
+           "  \"loads\": [ { \"grid_line\": { \"y\": 0.5, \"normal\": [0, 1] }, \"force_per_length\": [0, 1] } ],\n"
+           "  \"output\": {",
+           "loads[0].grid_line", "normal");
 }
 
 int main(void)
