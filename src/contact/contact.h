@@ -15,7 +15,10 @@
  *                       MPM grid side or line) keeps the nodes it had at t = 0; the other surfaces
  *                       take the nodes within pm_contact::reach of them, so that moving meshfree
  *                       nodes and moving obstacles meet as they move. Each entry holds the normal
- *                       into the surface at the node.
+ *                       into the surface at the node. A box around each surface (its points, disk
+ *                       or nodes, widened by the reach) lets this pass and the gaps' skip the far
+ *                       nodes and particles without a distance: the distances to a polyline of
+ *                       every particle and node took 17 % of an elastic block's step.
  *   pm_contact_gaps     explicit steps, right after: every entry's gap from the material's actual
  *                       surface (detect.c), so a law acts when the material reaches the surface, not
  *                       when a node's cell holds material.
@@ -121,6 +124,9 @@ typedef struct pm_contact_surface {
                                   counter-clockwise (the material, outside, is right of every segment) */
     const pm_timefn *motion; /**< velocity per component (PM_DIM functions of time; NULL: at rest) */
     double shift[PM_DIM];    /**< displacement of the obstacle at the time of the last detection */
+    double box_lo[PM_DIM], box_hi[PM_DIM]; /**< at the last detection: a box holding every point within
+                                  pm_contact::reach of the surface (and the inside of a polygon or circle),
+                                  so that the node and particle passes skip the rest without a distance */
     double vel[PM_DIM];      /**< its velocity then */
     double stiffness;        /**< penalty law: (c / h)^2 times the penalty factor: force per node mass and
                                   penetration */

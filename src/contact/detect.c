@@ -16,11 +16,71 @@ static void place(pm_contact_surface *sf, double t)
     }
 }
 
+/* The box around a surface, widened by the reach: its points (a polyline, polygon), its disk, its
+ * nodes (a node set); a straight meshfree wall is a slab across the whole frame. */
+static void place_box(const pm_contact *ct, pm_contact_surface *sf, const pm_grid *g)
+{
+    for (int d = 0; d < PM_DIM; d++) {
+        sf->box_lo[d] = INFINITY;
+        sf->box_hi[d] = -INFINITY;
+    }
+    switch (sf->kind) {
+    case PM_CONTACT_CIRCLE:
+        for (int d = 0; d < PM_DIM; d++) {
+            sf->box_lo[d] = sf->origin[d] + sf->shift[d] - sf->radius;
+            sf->box_hi[d] = sf->origin[d] + sf->shift[d] + sf->radius;
+        }
+        break;
+    case PM_CONTACT_POLYLINE:
+    case PM_CONTACT_POLYGON:
+        for (size_t q = 0; q < sf->n_points; q++)
+            for (int d = 0; d < PM_DIM; d++) {
+                const double x = ct->points[PM_DIM * (sf->first_point + q) + d] + sf->shift[d];
+                sf->box_lo[d] = fmin(sf->box_lo[d], x);
+                sf->box_hi[d] = fmax(sf->box_hi[d], x);
+            }
+        break;
+    case PM_CONTACT_NODE_SET:
+        if (!g->x) { /* no node positions given: no box */
+            for (int d = 0; d < PM_DIM; d++)
+                sf->box_lo[d] = -INFINITY, sf->box_hi[d] = INFINITY;
+            break;
+        }
+        for (size_t e = sf->first; e < sf->first + sf->n; e++)
+            for (int d = 0; d < PM_DIM; d++) {
+                const double x = g->x[PM_DIM * ct->node[e].node + d];
+                sf->box_lo[d] = fmin(sf->box_lo[d], x);
+                sf->box_hi[d] = fmax(sf->box_hi[d], x);
+            }
+        break;
+    default:
+        for (int d = 0; d < PM_DIM; d++) {
+            sf->box_lo[d] = d == sf->axis ? sf->value : -INFINITY;
+            sf->box_hi[d] = d == sf->axis ? sf->value : INFINITY;
+        }
+        break;
+    }
+    for (int d = 0; d < PM_DIM; d++) {
+        sf->box_lo[d] -= ct->reach;
+        sf->box_hi[d] += ct->reach;
+    }
+}
+
+static inline int in_box(const pm_contact_surface *sf, const double *x)
+{
+    for (int d = 0; d < PM_DIM; d++)
+        if (!(x[d] >= sf->box_lo[d] && x[d] <= sf->box_hi[d]))
+            return 0;
+    return 1;
+}
+
 /* Every node within reach of a surface that is not a node set (or inside it). */
 static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
 {
     const pm_contact_surface *sf = &ct->surface[k];
     for (size_t I = 0; I < g->n_nodes && ct->n_node < ct->cap; I++) {
+        if (!in_box(sf, g->x + PM_DIM * I))
+            continue;
         double n[PM_DIM];
         const double sd = pm_contact_distance(ct, sf, g->x + PM_DIM * I, n);
         if (sd > ct->reach)
@@ -48,6 +108,7 @@ void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
     for (size_t k = 0; k < ct->n_surfaces; k++) {
         pm_contact_surface *sf = &ct->surface[k];
         place(sf, t);
+        place_box(ct, sf, g);
         if (sf->kind != PM_CONTACT_NODE_SET)
             near_nodes(ct, (int32_t)k, g);
     }
@@ -83,6 +144,8 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
     }
     pm_stencil st;
     for (size_t i = 0; i < p->n; i++) {
+        if (!in_box(sf, p->x + PM_DIM * i))
+            continue;
         double n[PM_DIM];
         const double sd = pm_contact_distance(ct, sf, p->x + PM_DIM * i, n);
         if (sd > ct->reach || pm_approx_eval(a, p, i, &st) != 0)
