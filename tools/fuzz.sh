@@ -17,7 +17,9 @@ done
 src=$(cd "$(dirname "$0")/.." && pwd)
 crashes="$build/fuzz-crashes"
 mkdir -p "$crashes"
-before=$(ls "$crashes" | wc -l)
+# libFuzzer also saves slow-unit-* files (an input slower than 10 s): information, not a failure
+failures() { ls -t "$crashes" | grep -v -e '-slow-unit-'; }
+before=$(failures | wc -l)
 pids=""
 for t in "$@"; do
   mkdir -p "$build/fuzz-work/$t"
@@ -36,10 +38,10 @@ for t in "$@"; do
   cov=$(grep -o 'cov: [0-9]*' "$build/fuzz-$t.log" | tail -1)
   echo "fuzz: $t: ${runs:-?} inputs, $cov, corpus $(ls "$build/fuzz-work/$t" | wc -l) files"
 done
-after=$(ls "$crashes" | wc -l)
+after=$(failures | wc -l)
 if [ "$status" -ne 0 ] || [ "$after" -ne "$before" ]; then
   echo "fuzz: FAILED: inputs saved in $crashes:"
-  ls -t "$crashes" | head -n $((after - before + 1)) | sed 's/^/  /'
+  failures | head -n $((after - before + 1)) | sed 's/^/  /'
   echo "fuzz: reproduce with $build/tests/fuzz_TARGET FILE; add the input to tests/fuzz/corpus/TARGET once fixed"
   exit 1
 fi
