@@ -8,13 +8,18 @@
  * the fuzzer keeps to a far smaller budget so that one input takes milliseconds, not minutes.
  * Relative file names (grid.file of a Gmsh grid) resolve against the examples' gmsh_bar directory
  * (FUZZ_CASE_NAME, set by the build), so a seed can name its mesh "bar.msh".
+ * With FUZZ_VERBOSE=1 in the environment each input's outcome is printed (to see how far the seeds reach).
  */
 #include <stddef.h>
 #include <stdint.h>
 
 #include "io/case_internal.h"
 #include "pmech/case.h"
+#include "pmech/error.h"
 #include "pmech/sim.h"
+
+#include <stdio.h>
+#include <stdlib.h>
 
 #ifndef FUZZ_CASE_NAME
 #define FUZZ_CASE_NAME "fuzz/case.json"
@@ -31,15 +36,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    static int verbose = -1;
+    if (verbose < 0)
+        verbose = getenv("FUZZ_VERBOSE") && atoi(getenv("FUZZ_VERBOSE")) > 0;
+    const char *outcome = "refused by the loader";
     pm_case c;
     if (pm_case_load_buffer((const char *)data, size, FUZZ_CASE_NAME, &c) == 0) {
         double particles, nodes;
         pm_case_estimate_sizes(&c, &particles, &nodes);
         pm_sim *s = NULL;
         const double max_particles = c.method == PM_METHOD_MPM ? FUZZ_MAX_PARTICLES : FUZZ_MAX_MESHFREE_POINTS;
-        if (particles <= max_particles && nodes <= FUZZ_MAX_NODES && pm_sim_create(&c, &s, 1) == 0)
+        outcome = "loaded, larger than the fuzzing budget";
+        if (particles <= max_particles && nodes <= FUZZ_MAX_NODES) {
+            outcome = pm_sim_create(&c, &s, 1) == 0 ? "simulation built" : "refused by pm_sim_create";
             pm_sim_destroy(s);
+        }
     }
+    if (verbose)
+        printf("fuzz case_sim: %zu bytes: %s%s%s\n", size, outcome, outcome[0] == 'r' ? ": " : "",
+               outcome[0] == 'r' ? pm_error_message() : "");
     pm_case_free(&c);
     return 0;
 }
