@@ -67,6 +67,13 @@ pvd = ET.parse('twice.out/particles.pvd').getroot()
 files = [d.get('file') for d in pvd.iter('DataSet')]
 whole = all(open(os.path.join('twice.out', f), 'rb').read().rstrip().endswith(b'</VTKFile>') for f in files)
 sys.exit(0 if whole and len(files) >= 2 else 1)"
+# (the second signal may reach a run still in its step, or one already writing its checkpoint and
+# run.json: either way run.json must say what happened)
+check "two SIGINTs: run.json says the run was interrupted" python3 -c "
+import json, sys
+r = json.load(open('twice.out/run.json'))
+sys.exit(0 if r['exit_status'] == 130 and r['interrupted'] == 'SIGINT' else 1)"
+check "two SIGINTs: no temporary file is left" sh -c '! ls twice.out | grep -q "\.tmp$"'
 
 if [ $fail -eq 0 ]; then echo "all output-directory and signal checks passed"; fi
 exit $fail
