@@ -13,8 +13,8 @@
  * of forces.csv, and the byte length of every log file, which a restart cuts back to before appending.
  *
  * Covered: method mpm with every shape function but lme (whose per-particle Lagrange multipliers are a
- * warm start kept inside the approximation), analysis explicit, implicit and quasi_static, without
- * contact_pairs and without strength reduction. pm_checkpoint_covers() says why anything else is not.
+ * warm start kept inside the approximation), analysis explicit, implicit and quasi_static, with or
+ * without contact_pairs, but not a strength reduction. pm_checkpoint_covers() says why anything else is not.
  */
 #ifndef PMECH_IO_CHECKPOINT_H
 #define PMECH_IO_CHECKPOINT_H
@@ -109,10 +109,12 @@ int pm_checkpoint_logs_aside(pm_checkpoint *ck);
 
 /**
  * @brief After the outputs were opened (pm_output_open_resume and the logs' own opens): the frame
- *        list, the probes, the picture ranges and forces.csv's schedule as stored; every log back in
- *        place, cut to its stored length, and its stream appending to it.
+ *        list, the probes, the picture ranges, forces.csv's schedule and the body fields' impulses
+ *        (contact_forces.csv) as stored; every log back in place, cut to its stored length, and its
+ *        stream appending to it.
  */
-int pm_checkpoint_restore_outputs(pm_checkpoint *ck, pm_output *out, pm_forces_log *forces, pm_ck_logs *logs);
+int pm_checkpoint_restore_outputs(pm_checkpoint *ck, pm_sim *s, pm_output *out, pm_forces_log *forces,
+                                  pm_ck_logs *logs);
 
 /** @brief Close (NULL is fine); logs still aside are put back. */
 void pm_checkpoint_close(pm_checkpoint *ck);

@@ -4,6 +4,7 @@
 #include "io/output_internal.h"
 
 #include "contact/contact.h"
+#include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/flow.h"
 
@@ -405,6 +406,14 @@ static int read_probes(pm_checkpoint *ck, hid_t g, pm_output *o)
     return rc;
 }
 
+static int read_multibody(pm_checkpoint *ck, hid_t g, void *arg)
+{
+    pm_multibody *mb = arg;
+    const size_t nf = (size_t)mb->n_fields;
+    pm_check(get_double(&ck->f, g, "impulse_time", &mb->impulse_time));
+    return ck_read(&ck->f, g, "pair_impulse", CK_DOUBLE, mb->pair_impulse, nf * nf, PM_DIM);
+}
+
 typedef struct output_args {
     pm_output *out;
     pm_forces_log *forces;
@@ -447,10 +456,13 @@ static int read_output(pm_checkpoint *ck, hid_t g, void *arg)
     return get_double(&ck->f, g, "forces_next", &a->forces->next);
 }
 
-int pm_checkpoint_restore_outputs(pm_checkpoint *ck, pm_output *out, pm_forces_log *forces, pm_ck_logs *logs)
+int pm_checkpoint_restore_outputs(pm_checkpoint *ck, pm_sim *s, pm_output *out, pm_forces_log *forces,
+                                  pm_ck_logs *logs)
 {
     output_args a = {out, forces};
     int rc = in_group(ck, "output", read_output, &a);
+    if (!rc && s->mb) /* after contact_forces.csv was opened, which starts the impulses afresh */
+        rc = in_group(ck, "multibody", read_multibody, s->mb);
     const int rb = logs_back(ck, 1);
     if (!rc)
         rc = rb;

@@ -4,6 +4,7 @@
 #include "io/output_internal.h"
 
 #include "contact/contact.h"
+#include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/flow.h"
 
@@ -57,9 +58,6 @@ int pm_checkpoint_covers(const pm_sim *s)
         return pm_error_set(PM_EINPUT, "checkpoints do not cover shape_function lme: its Lagrange multipliers "
                             "are kept per particle as the next evaluation's starting point, so a continued run "
                             "would differ in the last digits");
-    if (s->mb)
-        return pm_error_set(PM_EINPUT, "checkpoints do not cover contact_pairs yet (the body fields' pair "
-                            "impulses are not stored)");
     if (c->analysis.strength_reduction.enabled)
         return pm_error_set(PM_EINPUT, "a strength reduction is a search of many runs: it cannot be continued "
                             "from a checkpoint");
@@ -222,6 +220,15 @@ static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
     return rc;
 }
 
+/* contact_pairs: the impulses between body fields since the last contact_forces.csv row */
+static int write_multibody(const ck_file *f, hid_t g, const pm_ck_run *r)
+{
+    const pm_multibody *mb = r->s->mb;
+    const size_t nf = (size_t)mb->n_fields;
+    pm_check(put_double(f, g, "impulse_time", mb->impulse_time));
+    return ck_write(f, g, "pair_impulse", CK_DOUBLE, mb->pair_impulse, nf * nf, PM_DIM);
+}
+
 static int write_run(const ck_file *f, hid_t g, const pm_ck_run *r)
 {
     const pm_run_loop *l = r->loop;
@@ -334,6 +341,8 @@ static int write_all(const ck_file *f, const pm_ck_run *r)
         pm_check(in_group(f, "flow", write_flow, r));
     if (r->s->contact)
         pm_check(in_group(f, "contact", write_contact, r));
+    if (r->s->mb)
+        pm_check(in_group(f, "multibody", write_multibody, r));
     pm_check(in_group(f, "run", write_run, r));
     pm_check(in_group(f, "output", write_output, r));
     return in_group(f, "logs", write_logs, r);

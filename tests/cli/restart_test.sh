@@ -2,8 +2,9 @@
 # Checkpoint and restart (docs/checkpoint.md): a run stopped by SIGINT or SIGTERM mid-run, or killed
 # outright after a periodic checkpoint, and then continued with --restart writes the same bytes into every
 # output file (frames, pictures, pvd, every CSV log) as the same run never stopped; cmp decides, nothing is
-# tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures, sources and sinks, implicit
-# Newmark dynamics. What is not covered (GMM, another case, a damaged file) is refused with exit 2.
+# tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
+# implicit Newmark dynamics, two bodies in contact (contact_pairs). What is not covered (GMM, another
+# case, a damaged file) is refused with exit 2.
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
@@ -24,18 +25,18 @@ same_outputs() {
   done
   return $bad
 }
-# case name, signal, frame to wait for, exit status: a full run, a run stopped by the signal once that frame exists,
+# case name, signal, frame to wait for, exit status[, threads]: a full run, a run stopped by the signal once that frame exists,
 # its continuation; then the two directories compared
 stop_and_continue() {
-  name=$1; sig=$2; frame=$3; code=$4
-  "$PMECH" run "$name.json" -o "$name.full" --quiet --threads 1 >/dev/null 2>&1
+  name=$1; sig=$2; frame=$3; code=$4; threads=${5:-1}
+  "$PMECH" run "$name.json" -o "$name.full" --quiet --threads $threads >/dev/null 2>&1
   check "$name: the uninterrupted run" [ $? -eq 0 ]
-  "$PMECH" run "$name.json" -o "$name.part" --quiet --threads 1 >/dev/null 2>err.txt & pid=$!
+  "$PMECH" run "$name.json" -o "$name.part" --quiet --threads $threads >/dev/null 2>err.txt & pid=$!
   i=0; while [ ! -f "$name.part/$frame" ] && [ $i -lt 3000 ]; do sleep 0.02; i=$((i + 1)); done
   kill -"$sig" $pid; wait $pid; rc=$?
   check "$name: SIG$sig stops the run mid-way (exit $rc)" [ $rc -eq "$code" ]
   check "$name: a checkpoint was written" [ -f "$name.part/checkpoint.h5" ]
-  "$PMECH" run "$name.json" --restart "$name.part" --quiet --threads 1 >/dev/null 2>err.txt
+  "$PMECH" run "$name.json" --restart "$name.part" --quiet --threads $threads >/dev/null 2>err.txt
   rc=$?
   check "$name: the restart runs to the end (exit $rc)" [ $rc -eq 0 ]
   [ $rc -eq 0 ] || cat err.txt
@@ -69,15 +70,21 @@ json.dump(c, open("implicit.json", "w"), indent=1)
 c = json.load(open("musl_mc.json"))
 c["output"]["checkpoint_interval"] = 0.1
 json.dump(c, open("periodic.json", "w"), indent=1)
+# contact_pairs: a block dropped on another, contact_forces.csv averaging impulses between its rows
+c = json.load(open(src + "/tests/verification/cases/block_drop.json"))
+c["output"] = {"interval": c["analysis"]["end_time"] / 50}
+json.dump(c, open("contact_pairs.json", "w"), indent=1)
 # GMM moves its node cloud with the material, which a checkpoint does not hold: refused
 c = json.load(open(src + "/examples/column_collapse/case_gmm_mls.json"))
 c["analysis"]["end_time"] = 0.01
 c["output"] = {}
 json.dump(c, open("gmm.json", "w"), indent=1)
 PY
-stop_and_continue musl_mc INT particles_000004.vtu 130
+# two threads: the colour blocks of the parallel scatter decide the order of additions into shared nodes
+stop_and_continue musl_mc INT particles_000004.vtu 130 2
 stop_and_continue flow TERM particles_000005.vtu 143
 stop_and_continue implicit INT particles_000005.vtu 130
+stop_and_continue contact_pairs INT particles_000010.vtu 130
 stop_and_continue periodic KILL particles_000016.vtu 137
 
 # ---- refusals: exit 2, a message that says why, nothing in the directory touched
