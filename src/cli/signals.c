@@ -84,7 +84,7 @@ void pm_cli_signals_prepare(const char *dir, const char *case_file)
     for (int k = 0; k < 2; k++) {
         const char *name = k ? "SIGTERM" : "SIGINT";
         const int n = snprintf(note[k], sizeof note[k],
-                               "{\n  \"version\": \"%s\",\n  \"case_file\": \"%s\",\n  \"exit_status\": %d,\n"
+                               "{\n  \"version\": \"%s\",\n  \"case\": \"%s\",\n  \"exit_status\": %d,\n"
                                "  \"interrupted\": \"%s\",\n  \"message\": \"a second %s stopped the run at once: "
                                "the frames listed in particles.pvd are whole, and checkpoint.h5 (if any) is the "
                                "last complete checkpoint\"\n}\n",
