@@ -87,6 +87,13 @@ stop_and_continue implicit INT particles_000005.vtu 130
 stop_and_continue contact_pairs INT particles_000010.vtu 130
 stop_and_continue periodic KILL particles_000016.vtu 137
 
+# ---- the layout of docs/checkpoint.md, read by HDF5's own h5dump (hdf5-tools)
+n=$(python3 -c "import json; print(json.load(open('musl_mc.full/run.json'))['particles'])")
+check "h5dump reads /particles/x as $n x 2" sh -c \
+  "h5dump -H -d /particles/x musl_mc.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 2 ) / ( $n, 2 ) }'"
+check "h5dump reads /time/t as the end time" sh -c \
+  "h5dump -a /time/t musl_mc.full/checkpoint.h5 | grep -q '(0): 0.6\$'"
+
 # ---- refusals: exit 2, a message that says why, nothing in the directory touched
 expect_refusal() { # description, text the message must hold, command...
   d=$1; text=$2; shift 2
