@@ -28,8 +28,9 @@ void pm_cmd_run_usage(FILE *f)
                "                    for runs of fewer than 5,000 particles)\n"
                "  -h, --help        this text\n"
                "  Outputs: particles.pvd (open in ParaView) with one particles_NNNNNN.vtu per frame, grid.vtu,\n"
-               "  probes.csv, energy.csv, run.json; implicit runs add newton.log and reactions.csv; a case with\n"
-               "  analysis.strength_reduction writes strength_reduction.csv and one srf_<F>/ per trial.\n");
+               "  probes.csv, energy.csv, run.json, checkpoint.h5 (what --restart continues from); implicit runs\n"
+               "  add newton.log and reactions.csv; a case with analysis.strength_reduction writes\n"
+               "  strength_reduction.csv and one srf_<F>/ per trial.\n");
 }
 
 static int bad_usage(const char *what)
