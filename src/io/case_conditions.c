@@ -235,6 +235,8 @@ int pm_case_parse_output(pm_case *c, json_t *o)
     pm_check(jr_range(&cx, "interval", c->output.interval, 0, 1, INFINITY, 0));
     pm_check(jr_number(&cx, o, "probe_interval", 0, 0, &c->output.probe_interval));
     pm_check(jr_range(&cx, "probe_interval", c->output.probe_interval, 0, 0, INFINITY, 0));
+    pm_check(jr_number(&cx, o, "checkpoint_interval", 0, 0, &c->output.checkpoint_interval));
+    pm_check(jr_range(&cx, "checkpoint_interval", c->output.checkpoint_interval, 0, 0, INFINITY, 0));
     json_t *pic = json_object_get(o, "pictures");
     if (pic && !json_is_false(pic)) {
         int f;
