@@ -142,6 +142,10 @@ typedef struct pm_case_obstacle {
     double *points;               /**< 2 per point */
     double center[2], radius;     /**< circle at t = 0 */
     int material_right;           /**< polyline: the material lies right of its direction (default left) */
+    int sharp_corners;            /**< polyline, polygon: 1 when a node nearest a corner takes the normal of
+                                       the face it lies squarely off (one normal per face, seed 004's two
+                                       coincident tool-tip nodes); 0 (default): the normal points at the
+                                       corner, as around a rounded edge */
     pm_timefn velocity[2];        /**< rigid translation velocity per component */
     pm_obstacle_law law;
     double friction;              /**< Coulomb coefficient >= 0; INFINITY for "no_slip" */

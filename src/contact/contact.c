@@ -235,6 +235,7 @@ int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double w
     sf->n_points = np;
     memcpy(ct->points + PM_DIM * ct->n_points, ob->points, PM_DIM * np * sizeof *pts);
     ct->n_points += np;
+    sf->sharp = ob->sharp_corners;
     if (sf->kind == PM_CONTACT_POLYLINE) {
         sf->side = ob->material_right ? -1.0 : 1.0;
     } else {

@@ -130,6 +130,8 @@ typedef struct pm_contact_surface {
     size_t first_point, n_points; /**< polyline, polygon: its points in pm_contact::points (at t = 0) */
     double side;             /**< polyline: +1 material left of its direction, -1 right; polygon: -1 when
                                   counter-clockwise (the material, outside, is right of every segment) */
+    int sharp;               /**< polyline, polygon: a node nearest a corner takes the normal of the face
+                                  it lies squarely off instead of the direction to the corner */
     const pm_timefn *motion; /**< velocity per component (PM_DIM functions of time; NULL: at rest) */
     double shift[PM_DIM];    /**< displacement of the obstacle at the time of the last detection */
     double vel[PM_DIM];      /**< its velocity then */

@@ -435,6 +435,42 @@ static void obstacles_move_and_measure(void **st)
     pm_case_free(&c);
 }
 
+/* A tool's tip: outside a polygon's corner a round corner's normal points at the corner, a sharp
+ * corner's is the normal of the face the point lies squarely off (below the tip: the lower face's;
+ * ahead of it: the front face's), with the same distance either way. A polyline's free end stays round. */
+static void sharp_and_round_corners(void **st)
+{
+    (void)st;
+    const char *tools[2] = {"], \"obstacles\": [ { \"type\": \"polygon\", "
+                            "\"points\": [[0.5, 0.3], [0.9, 0.3], [0.9, 0.45], [0.5, 0.45]] },"
+                            "{ \"type\": \"polyline\", \"points\": [[0.1, 0.1], [0.3, 0.1]] }",
+                            "], \"obstacles\": [ { \"type\": \"polygon\", \"corners\": \"sharp\", "
+                            "\"points\": [[0.5, 0.3], [0.9, 0.3], [0.9, 0.45], [0.5, 0.45]] },"
+                            "{ \"type\": \"polyline\", \"corners\": \"sharp\", \"points\": [[0.1, 0.1], [0.3, 0.1]] }"};
+    for (int sharp = 0; sharp < 2; sharp++) {
+        pm_case c;
+        pm_sim *s = small_sim(&c, "mpm", "linear", tools[sharp]);
+        pm_contact *ct = s->contact;
+        pm_contact_detect(ct, &s->grid, 0.0);
+        double n[PM_DIM];
+        /* below and a little ahead of the corner (0.5, 0.3): squarely off the lower face y = 0.3 */
+        const double below[PM_DIM] = {0.47, 0.26}, ahead[PM_DIM] = {0.46, 0.27};
+        NEAR(pm_contact_distance(ct, &ct->surface[0], below, n), 0.05);
+        NEAR(n[0], sharp ? 0.0 : 0.6);
+        NEAR(n[1], sharp ? 1.0 : 0.8);
+        NEAR(pm_contact_distance(ct, &ct->surface[0], ahead, n), 0.05);
+        NEAR(n[0], sharp ? 1.0 : 0.8);
+        NEAR(n[1], sharp ? 0.0 : 0.6);
+        /* beyond the polyline's free end: the direction to the end either way */
+        const double beyond[PM_DIM] = {0.34, 0.13};
+        NEAR(pm_contact_distance(ct, &ct->surface[1], beyond, n), 0.05);
+        NEAR(n[0], -0.8);
+        NEAR(n[1], -0.6);
+        pm_sim_destroy(s);
+        pm_case_free(&c);
+    }
+}
+
 /* The laws act on the velocity relative to a moving obstacle: a node moving with it is left alone,
  * one approaching it faster is brought to its normal velocity. */
 static void laws_act_relative_to_a_moving_obstacle(void **st)
@@ -481,6 +517,7 @@ int main(void)
         cmocka_unit_test(mpm_friction_needs_a_normal),
         cmocka_unit_test(gmm_walls),
         cmocka_unit_test(obstacles_move_and_measure),
+        cmocka_unit_test(sharp_and_round_corners),
         cmocka_unit_test(laws_act_relative_to_a_moving_obstacle),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

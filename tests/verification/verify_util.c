@@ -176,3 +176,28 @@ void vu_plot_history(const char *png, const char *title, const char *ylabel, con
     if (pm_plot_lines(png, s, ns, &o) != 0)
         fprintf(stderr, "plot %s: %s\n", png, pm_error_message());
 }
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double vu_deposit_front(const pm_sim *s, double gap, double *xmax)
+{
+    const size_t n = s->p.n;
+    double *xs = malloc(n * sizeof *xs);
+    if (!xs || n == 0) {
+        free(xs);
+        return NAN;
+    }
+    for (size_t i = 0; i < n; i++)
+        xs[i] = s->p.x[2 * i];
+    qsort(xs, n, sizeof *xs, by_value);
+    double front = xs[0];
+    for (size_t i = 1; i < n && xs[i] - front <= gap; i++)
+        front = xs[i];
+    *xmax = xs[n - 1];
+    free(xs);
+    return front;
+}

@@ -62,4 +62,11 @@ void vu_write_csv(const char *path, const char *header, const double *data, size
 void vu_plot_history(const char *png, const char *title, const char *ylabel, const double *t, const double *v,
                      size_t n, const char *label, const double *ref, const char *ref_label);
 
+/**
+ * The front of a granular deposit along x: the particles' x sorted, up to the first gap wider than
+ * @p gap (a particle beyond such a gap has left the deposit); the farthest particle's x in *xmax.
+ * Returns NAN when out of memory.
+ */
+double vu_deposit_front(const pm_sim *s, double gap, double *xmax);
+
 #endif
