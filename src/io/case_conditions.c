@@ -38,12 +38,6 @@ int pm_case_parse_bcs(pm_case *c, json_t *bcs)
         int t;
         pm_check(jr_enum(&cx, b, "type", JR_REQUIRED, bc_types, 0, &t));
         bc->type = (pm_bc_type)t;
-        /* the implicit tangent has no contact terms, so Newton could not hold a friction condition */
-        if (bc->type == PM_BC_FRICTION && c->analysis.type != PM_ANALYSIS_EXPLICIT)
-            return pm_error_set(PM_EINPUT,
-                                "%s: %s.type: 'friction' needs analysis.type 'explicit' (implicit contact is not "
-                                "available in this version); use 'fixed' or 'velocity'",
-                                c->file, path);
         json_t *bd = json_object_get(b, "boundary");
         jr_join(bp, sizeof bp, path, "boundary");
         bc->line_axis = -1;
