@@ -30,17 +30,29 @@ demo: build
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-# Sanitizer configuration: the same tests under ASan and UBSan.
+# Sanitizer configuration: every test under ASan and UBSan, the fuzz tests included (the corpus replayed
+# by the gcc build, libFuzzer in its clang build); the verification tests that take minutes in a release
+# build run their small variants (PMECH_VERIFY_SMALL, docs/testing.md).
 asan: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DPMECH_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)
-	cd build-asan && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp ctest --output-on-failure -j $(JOBS) -LE fuzz
+	cd build-asan && PMECH_VERIFY_SMALL=1 ASAN_OPTIONS=detect_leaks=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp ctest --output-on-failure -j $(JOBS)
+
+# Fuzzing (docs/testing.md): clang builds the library instrumented for libFuzzer with ASan and UBSan in
+# build-fuzz, then every target runs for FUZZ_SECONDS; failing inputs land in build-fuzz/fuzz-crashes.
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?= case_sim gmsh driver
+fuzz: deps
+	cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=Debug -DPMECH_FUZZ=ON
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_targets
+	sh tools/fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 bench: build
 	sh bench/run.sh $(BUILD)/pmech --write
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan build-fuzz
 
 # Runs the verification tests and rewrites docs/verification.md.
 verify: build

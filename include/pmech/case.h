@@ -142,6 +142,10 @@ typedef struct pm_case_obstacle {
     double *points;               /**< 2 per point */
     double center[2], radius;     /**< circle at t = 0 */
     int material_right;           /**< polyline: the material lies right of its direction (default left) */
+    int sharp_corners;            /**< polyline, polygon: 1 when a node nearest a corner takes the normal of
+                                       the face it lies squarely off (one normal per face, seed 004's two
+                                       coincident tool-tip nodes); 0 (default): the normal points at the
+                                       corner, as around a rounded edge */
     pm_timefn velocity[2];        /**< rigid translation velocity per component */
     pm_obstacle_law law;
     double friction;              /**< Coulomb coefficient >= 0; INFINITY for "no_slip" */
@@ -238,6 +242,7 @@ typedef struct pm_case {
         char directory[PM_PATH_MAX]; /**< default "<stem>.out" */
         double interval;             /**< default end_time / 100 */
         double probe_interval;       /**< 0 = every step */
+        double checkpoint_interval;  /**< simulated seconds between checkpoints; 0 = at the end (and on a signal) only */
         char pictures[PM_NAME_MAX];  /**< field of a PNG picture per frame (pm_field_from_name), "" = none */
         double picture_range[2];     /**< fixed colour range of the pictures; NaN: one range over the run */
         int picture_width;           /**< picture width in pixels (default 800) */

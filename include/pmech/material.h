@@ -79,6 +79,12 @@ typedef struct pm_material_ops {
                   double stress[6], double *tangent);
     /** P-wave speed at the current state for the CFL condition; density is the current one. */
     double (*wave_speed)(const pm_material *m, const double *state, double density);
+    /**
+     * Viscosity (Pa s) of a stress proportional to the strain rate that a step evaluates from that
+     * step's own increment (explicit in time), e.g. a bulk viscosity. NULL: none. The explicit step
+     * must resolve it as well as the waves: see pm_material_signal_speed().
+     */
+    double (*rate_viscosity)(const pm_material *m);
     /** Equivalent plastic strain stored in @p state (NULL: model has none, reported as 0). */
     double (*plastic_strain)(const pm_material *m, const double *state);
     /**
@@ -132,6 +138,17 @@ double pm_material_param(const pm_material *m, const char *key);
  * @brief Default P-wave speed sqrt((K + 4G/3)/rho) from the elastic constants.
  */
 double pm_material_elastic_wave_speed(const pm_material *m, const double *state, double density);
+
+/**
+ * @brief Speed that bounds the explicit step at a point of cell size @p h: dt = cfl h / (this + |v|).
+ *
+ * The wave speed (ops->wave_speed, or the elastic one) plus 4 eta / (rho h) for a model with a
+ * rate viscosity eta (ops->rate_viscosity). A viscous stress integrated forward in time is stable only
+ * for dt <= rho h^2 / (4 eta) on a 2-D grid (the highest nodal mode decays at 8 eta / (rho h^2));
+ * central differences with both terms are stable when dt <= 2 / (omega + 2 xi omega), which adding
+ * the two speeds guarantees.
+ */
+double pm_material_signal_speed(const pm_material *m, const double *state, double density, double h);
 
 /**
  * @brief Complementary energy of isotropic linear elasticity, 1/2 sigma : C^-1 : sigma.

@@ -36,7 +36,10 @@ static double circle(const pm_contact_surface *sf, const double x[PM_DIM], doubl
 }
 
 /* Segments of a polyline or polygon: the nearest one decides. The material-side normal of segment
- * a -> b is side times its left normal (-e_y, e_x). */
+ * a -> b is side times its left normal (-e_y, e_x). Outside a corner shared by two segments every
+ * point is nearest the corner itself: a round corner pushes along the direction to it, a sharp one
+ * along the normal of the face the point lies squarely off, so that material on either side of a
+ * tool's tip follows its own face (seed 004 §5.3.2 gives the tip two nodes, one per face). */
 static double chain(const pm_contact *ct, const pm_contact_surface *sf, const double x[PM_DIM], double n[PM_DIM])
 {
 #if PM_DIM != 2
@@ -45,7 +48,7 @@ static double chain(const pm_contact *ct, const pm_contact_surface *sf, const do
     const double *pts = ct->points + PM_DIM * sf->first_point;
     const size_t np = sf->n_points, nseg = sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
     double best = INFINITY, best_depth = 0, q_best[2] = {0, 0}, m_best[2] = {0, 1};
-    int inside = 0;
+    int inside = 0, at_corner = 0;
     for (size_t k = 0; k < nseg; k++) {
         const double *a0 = pts + 2 * k, *b0 = pts + 2 * ((k + 1) % np);
         const double a[2] = {a0[0] + sf->shift[0], a0[1] + sf->shift[1]};
@@ -64,6 +67,9 @@ static double chain(const pm_contact *ct, const pm_contact_surface *sf, const do
             best_depth = depth;
             q_best[0] = q[0], q_best[1] = q[1];
             m_best[0] = m[0], m_best[1] = m[1];
+            /* a polyline's two free ends are no corners */
+            at_corner = (s <= 0 && (sf->kind == PM_CONTACT_POLYGON || k > 0)) ||
+                        (s >= 1 && (sf->kind == PM_CONTACT_POLYGON || k + 1 < nseg));
         }
         /* even-odd rule for the polygon's inside */
         if (sf->kind == PM_CONTACT_POLYGON && ((a[1] > x[1]) != (b[1] > x[1])) &&
@@ -77,7 +83,9 @@ static double chain(const pm_contact *ct, const pm_contact_surface *sf, const do
         const double w[2] = {x[0] - q_best[0], x[1] - q_best[1]};
         sgn = dot2(w, m_best) >= 0 ? 1.0 : -1.0;
     }
-    if (best > 1e-12 * (1 + fabs(x[0]) + fabs(x[1]))) {
+    if (sf->sharp && at_corner && sgn > 0) {
+        n[0] = -m_best[0], n[1] = -m_best[1];
+    } else if (best > 1e-12 * (1 + fabs(x[0]) + fabs(x[1]))) {
         /* towards the nearest point from the material's side, deeper in from inside */
         for (int d = 0; d < 2; d++)
             n[d] = sgn * (q_best[d] - x[d]) / best;

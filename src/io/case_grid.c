@@ -78,29 +78,36 @@ int pm_case_parse_grid(pm_case *c, json_t *g)
     return PM_OK;
 }
 
-/* Estimates from the bodies' bounding boxes: a shape fills at most its box. */
+/* At most the particles of a body filling its shape's bounding box. */
+static double box_particles(const pm_case *c, const pm_case_body *body, double cell_area)
+{
+    double lo[PM_DIM], hi[PM_DIM];
+    pm_case_shape_box(&body->shape, lo, hi);
+    const int n = body->particles_per_cell;
+    const double per_cell = c->grid.element == PM_QUAD4 ? (double)(n ? n : 2) * (n ? n : 2) : 2.0 * (n ? n : 3);
+    return (hi[0] - lo[0]) * (hi[1] - lo[1]) / cell_area * per_cell;
+}
+
+void pm_case_estimate_sizes(const pm_case *c, double *particles, double *nodes)
+{
+    *particles = *nodes = 0;
+    if (c->grid.type != PM_GRID_RECTANGLE)
+        return;
+    const double cells = (double)c->grid.cells[0] * (double)c->grid.cells[1];
+    const double cell_area = c->grid.size[0] * c->grid.size[1] / cells;
+    for (size_t b = 0; b < c->n_bodies; b++)
+        *particles += box_particles(c, &c->bodies[b], cell_area);
+    for (size_t k = 0; k < c->n_sources; k++) /* room for every release is allocated at the start */
+        *particles += box_particles(c, &c->sources[k].body, cell_area) * (double)pm_case_source_releases(c, k);
+    *nodes = (double)(c->grid.cells[0] + 1) * (double)(c->grid.cells[1] + 1);
+}
+
 int pm_case_check_sizes(const pm_case *c)
 {
     if (c->grid.type != PM_GRID_RECTANGLE)
         return PM_OK;
-    const double cells = (double)c->grid.cells[0] * (double)c->grid.cells[1];
-    const double cell_area = c->grid.size[0] * c->grid.size[1] / cells;
-    double particles = 0;
-    for (size_t b = 0; b < c->n_bodies; b++) {
-        double lo[PM_DIM], hi[PM_DIM];
-        pm_case_shape_box(&c->bodies[b].shape, lo, hi);
-        int n = c->bodies[b].particles_per_cell;
-        double per_cell = c->grid.element == PM_QUAD4 ? (double)(n ? n : 2) * (n ? n : 2) : 2.0 * (n ? n : 3);
-        particles += (hi[0] - lo[0]) * (hi[1] - lo[1]) / cell_area * per_cell;
-    }
-    for (size_t k = 0; k < c->n_sources; k++) { /* room for every release is allocated at the start */
-        double lo[PM_DIM], hi[PM_DIM];
-        pm_case_shape_box(&c->sources[k].body.shape, lo, hi);
-        int n = c->sources[k].body.particles_per_cell;
-        double per_cell = c->grid.element == PM_QUAD4 ? (double)(n ? n : 2) * (n ? n : 2) : 2.0 * (n ? n : 3);
-        particles += (hi[0] - lo[0]) * (hi[1] - lo[1]) / cell_area * per_cell * (double)pm_case_source_releases(c, k);
-    }
-    const double nodes = (double)(c->grid.cells[0] + 1) * (double)(c->grid.cells[1] + 1);
+    double particles, nodes;
+    pm_case_estimate_sizes(c, &particles, &nodes);
     const double bytes = particles * 220.0 + nodes * 120.0;
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     const double mem = pages > 0 && page > 0 ? (double)pages * (double)page : 1e12;

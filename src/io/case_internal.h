@@ -80,6 +80,12 @@ int pm_case_check_strength_reduction(const pm_case *c);
 /** `grid`: a rectangle's origin, size, cells and element, or a gmsh file resolved against c->dir. */
 int pm_case_parse_grid(pm_case *c, json_t *g);
 
+/**
+ * Upper estimates of the particles (bodies and every release of the sources, each shape as full as its
+ * bounding box) and grid nodes of a rectangle grid; both 0 for a Gmsh grid, which the mesh file bounds.
+ */
+void pm_case_estimate_sizes(const pm_case *c, double *particles, double *nodes);
+
 /** Refuse particle and node counts that cannot be allocated, before anything is (after the bodies). */
 int pm_case_check_sizes(const pm_case *c);
 

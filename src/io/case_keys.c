@@ -30,7 +30,7 @@ static const char *const bc_friction[] = {"type", "boundary", "coefficient", NUL
 static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const probe_keys[] = {"name", "quantity", "point", "body", NULL};
 static const char *const output_keys[] = {"directory", "interval", "probe_interval", "pictures", "picture_range",
-                                          "picture_width", NULL};
+                                          "picture_width", "checkpoint_interval", NULL};
 static const char *const source_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
                                           "initial_stress", "k0", "surface_y", "times", "start", "period",
                                           "until", "only_when_free", "contact_group", NULL};
@@ -40,7 +40,7 @@ static const char *const sink_outlet[] = {"type", "name", "boundary", NULL},
 static const char *const sink_line[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const pair_keys[] = {"bodies", "law", "friction", "separation", NULL};
 static const char *const obstacle_keys[] = {"name", "type", "points", "center", "radius", "material_side", "law",
-                                            "friction", "penalty_factor", "velocity", NULL};
+                                            "friction", "penalty_factor", "velocity", "corners", NULL};
 static const char *const timefn_keys[] = {"value", "ramp_time", "table", NULL};
 static const char *const load_keys[] = {"name", "nearest", "min", "max", "force", "grid_line", "force_per_length", NULL};
 static const char *const load_line[] = {"x", "y", "from", "to", NULL};

@@ -16,6 +16,7 @@
 static const char *const obstacle_types[] = {"polyline", "polygon", "circle", NULL};
 static const char *const laws[] = {"nodal", "penalty", NULL};
 static const char *const sides[] = {"left", "right", NULL};
+static const char *const corners[] = {"round", "sharp", NULL};
 
 int pm_case_parse_timefn(const char *file, const char *path, json_t *v, pm_timefn *f)
 {
@@ -189,7 +190,10 @@ static int parse_one(pm_case *c, size_t i, json_t *o)
         pm_check(jr_vec2(&cx, o, "center", JR_REQUIRED, NULL, ob->center));
         pm_check(jr_number(&cx, o, "radius", JR_REQUIRED, 0, &ob->radius));
         pm_check(jr_range(&cx, "radius", ob->radius, 0, 1, INFINITY, 0));
-        wrong = json_object_get(o, "points") ? "points" : json_object_get(o, "material_side") ? "material_side" : NULL;
+        wrong = json_object_get(o, "points")          ? "points"
+                : json_object_get(o, "material_side") ? "material_side"
+                : json_object_get(o, "corners")       ? "corners"
+                                                      : NULL;
     } else {
         pm_check(read_points(c, path, o, ob->type == PM_OBSTACLE_POLYLINE ? 2 : 3, ob));
         wrong = json_object_get(o, "center") ? "center" : json_object_get(o, "radius") ? "radius" : NULL;
@@ -204,6 +208,9 @@ static int parse_one(pm_case *c, size_t i, json_t *o)
     int side;
     pm_check(jr_enum(&cx, o, "material_side", 0, sides, 0, &side));
     ob->material_right = side;
+    int corner;
+    pm_check(jr_enum(&cx, o, "corners", 0, corners, 0, &corner));
+    ob->sharp_corners = corner;
     int law;
     pm_check(jr_enum(&cx, o, "law", 0, laws, 0, &law));
     ob->law = (pm_obstacle_law)law;
@@ -228,9 +235,6 @@ int pm_case_parse_obstacles(pm_case *c, json_t *obs)
         c->n_obstacles = i + 1; /* so that pm_case_free() frees what this one owns */
         pm_check(parse_one(c, i, json_array_get(obs, i)));
     }
-    if (n && c->analysis.type != PM_ANALYSIS_EXPLICIT)
-        return pm_error_set(PM_EINPUT, "%s: obstacles: need analysis.type 'explicit' (implicit contact with "
-                            "obstacles is not available in this version)", c->file);
     return PM_OK;
 }
 

@@ -165,6 +165,12 @@ static double gr_wave_speed(const pm_material *m, const double *state, double de
     return sqrt((Kt + 4.0 * G / 3.0) / density);
 }
 
+/* The bulk viscosity mu acts on this step's volumetric rate: explicit in time. */
+static double gr_rate_viscosity(const pm_material *m)
+{
+    return m->param[P_MU];
+}
+
 static double gr_energy(const pm_material *m, const pm_material_step *in, const double *state,
                         const double stress[6])
 {
@@ -188,6 +194,7 @@ const pm_material_ops pm_granular_ops = {
     .init_state = gr_init_state,
     .update = gr_update,
     .wave_speed = gr_wave_speed,
+    .rate_viscosity = gr_rate_viscosity,
     .plastic_strain = gr_eps_p,
     .strain_energy = gr_energy,
     .reduce_strength = NULL, /* no Coulomb strength for the search to lower */

@@ -74,6 +74,14 @@ double pm_material_elastic_wave_speed(const pm_material *m, const double *state,
     return sqrt((m->K + 4.0 * m->G / 3.0) / density);
 }
 
+double pm_material_signal_speed(const pm_material *m, const double *state, double density, double h)
+{
+    const double c = m->ops->wave_speed ? m->ops->wave_speed(m, state, density)
+                                        : pm_material_elastic_wave_speed(m, state, density);
+    const double eta = m->ops->rate_viscosity ? m->ops->rate_viscosity(m) : 0.0;
+    return c + 4.0 * eta / (density * h);
+}
+
 double pm_material_elastic_energy(const pm_material *m, const pm_material_step *in,
                                   const double *state, const double stress[6])
 {

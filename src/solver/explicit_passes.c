@@ -79,7 +79,7 @@ static inline int point_step(pm_sim *s, size_t i, double lxx, double lxy, double
         return 1;
     if (s->c->analysis.dt > 0)
         return 0; /* fixed step: the wave speed is not needed */
-    *wave = pm_point_wave_speed(m, state, p->mass[i], p->vol[i], p->v + PM_DIM * i);
+    *wave = pm_point_wave_speed(m, state, p->mass[i], p->vol[i], s->grid.h_min, p->v + PM_DIM * i);
     return 0;
 }
 

@@ -8,15 +8,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* c + |v| of a portion's material at its density as released. */
-static double portion_wave(const pm_case *c, const pm_particles *q)
+/* c + |v| of a portion's material at its density as released, in cells of size h. */
+static double portion_wave(const pm_case *c, const pm_particles *q, double h)
 {
     double w = 0;
     for (size_t i = 0; i < q->n; i++) {
         const pm_material *m = &c->materials[q->material[i]];
         const double rho = q->mass[i] / q->vol[i];
-        const double cw = m->ops->wave_speed ? m->ops->wave_speed(m, q->state + q->n_state * i, rho)
-                                             : pm_material_elastic_wave_speed(m, NULL, rho);
+        const double cw = pm_material_signal_speed(m, q->state + q->n_state * i, rho, h);
         double v2 = 0;
         for (int d = 0; d < PM_DIM; d++)
             v2 += q->v[PM_DIM * i + d] * q->v[PM_DIM * i + d];
@@ -83,7 +82,7 @@ static int setup_source(const pm_case *c, const pm_grid *g, size_t n_state, size
     pm_check(pm_particles_alloc(&r->portion, n, n_state));
     pm_seed_body_fill(c, &src->body, (int32_t)(c->n_bodies + k), g, &r->portion, 0);
     r->n_releases = pm_case_source_releases(c, k);
-    r->wave = portion_wave(c, &r->portion);
+    r->wave = portion_wave(c, &r->portion, g->h_min);
     for (int d = 0; d < PM_DIM; d++) {
         r->lo[d] = INFINITY;
         r->hi[d] = -INFINITY;

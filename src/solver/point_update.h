@@ -107,14 +107,13 @@ static inline int pm_point_update(const pm_material *m, pm_formulation form, con
     return 0;
 }
 
-/* Speed of the fastest signal at a point for the CFL condition: the material's wave speed at the
- * current density plus the particle's own speed (velocity v, PM_DIM entries). */
+/* Speed of the fastest signal at a point for the CFL condition: the material's signal speed at the
+ * current density in cells of size h (waves and any explicit viscosity) plus the particle's own speed
+ * (velocity v, PM_DIM entries). */
 static inline double pm_point_wave_speed(const pm_material *m, const double *state, double mass, double vol,
-                                         const double *v)
+                                         double h, const double *v)
 {
-    const double rho = mass / vol;
-    const double cw = m->ops->wave_speed ? m->ops->wave_speed(m, state, rho)
-                                         : pm_material_elastic_wave_speed(m, state, rho);
+    const double cw = pm_material_signal_speed(m, state, mass / vol, h);
     double v2 = v[0] * v[0];
     for (int d = 1; d < PM_DIM; d++)
         v2 += v[d] * v[d];

@@ -19,8 +19,7 @@ static double fastest_wave(const pm_sim *s)
     for (size_t i = 0; i < p->n; i++) {
         const pm_material *m = &s->c->materials[p->material[i]];
         const double rho = p->mass[i] / p->vol[i];
-        const double c = m->ops->wave_speed ? m->ops->wave_speed(m, p->state + p->n_state * i, rho)
-                                            : pm_material_elastic_wave_speed(m, NULL, rho);
+        const double c = pm_material_signal_speed(m, p->state + p->n_state * i, rho, s->grid.h_min);
         double v2 = 0;
         for (int d = 0; d < PM_DIM; d++)
             v2 += p->v[PM_DIM * i + d] * p->v[PM_DIM * i + d];

@@ -273,8 +273,7 @@ double pm_sim_stable_dt(const pm_sim *s)
     for (size_t i = 0; i < p->n; i++) {
         const pm_material *m = &s->c->materials[p->material[i]];
         double rho = p->mass[i] / p->vol[i];
-        double c = m->ops->wave_speed ? m->ops->wave_speed(m, p->state + p->n_state * i, rho)
-                                      : pm_material_elastic_wave_speed(m, NULL, rho);
+        double c = pm_material_signal_speed(m, p->state + p->n_state * i, rho, s->grid.h_min);
         double v = hypot(p->v[2 * i], p->v[2 * i + 1]);
         cmax = fmax(cmax, c);
         vmax = fmax(vmax, v);

@@ -1,126 +1,132 @@
 /*
- * Stand-alone driver of the fuzz target for compilers without libFuzzer (gcc): runs every seed, then
- * deterministic mutations of the seeds (byte flips, deletions, insertions of JSON tokens, splices,
- * truncations) from a fixed-seed generator, for a bounded count and time. Under ctest the build's
- * sanitizers (make asan) turn any memory error into a failure; in the default build a crash fails.
- * usage: fuzz_main SECONDS ITERATIONS SEED_FILE...
+ * Replay driver of a fuzz target for builds without libFuzzer (gcc, the default build): runs the
+ * target once on every file named, or on every file of every directory named (the seed corpus and
+ * the inputs that once failed). In `make asan` the sanitizers turn a memory error, leak or undefined
+ * behaviour into a failure; in any build a crash fails. It does not mutate: finding new inputs is
+ * libFuzzer's job (make fuzz).
+ * usage: fuzz_replay FILE_OR_DIRECTORY...
  */
+#include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include <sys/stat.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static uint64_t rng = 0x9E3779B97F4A7C15ull;
-static uint64_t next(void)
-{
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return rng;
-}
-
-static char *slurp(const char *path, size_t *len)
+static int replay_file(const char *path)
 {
     FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *b = malloc((size_t)n + 1);
-    if (b && fread(b, 1, (size_t)n, f) != (size_t)n) {
-        free(b);
-        b = NULL;
+    if (!f) {
+        fprintf(stderr, "fuzz replay: cannot open %s\n", path);
+        return 1;
+    }
+    size_t cap = 4096, len = 0;
+    char *buf = malloc(cap);
+    size_t got;
+    while (buf && (got = fread(buf + len, 1, cap - len, f)) > 0) {
+        len += got;
+        if (len == cap) {
+            char *nb = realloc(buf, 2 * cap);
+            if (!nb) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
     }
     fclose(f);
-    *len = (size_t)n;
-    return b;
+    if (!buf) {
+        fprintf(stderr, "fuzz replay: out of memory reading %s\n", path);
+        return 1;
+    }
+    /* an exact-size copy, so reading past the input's end is caught as it is under libFuzzer */
+    uint8_t *exact = malloc(len ? len : 1);
+    if (!exact) {
+        free(buf);
+        return 1;
+    }
+    memcpy(exact, buf, len);
+    free(buf);
+    LLVMFuzzerTestOneInput(exact, len);
+    free(exact);
+    return 0;
 }
 
-static const char *const tokens[] = {"{", "}", "[", "]", ",", ":", "\"", "null", "true", "-1", "1e308", "0",
-                                     "\"type\"", "\"rectangle\"", "\"circle\"", "\"polygon\"", "[[0,0],[1,0]]",
-                                     "1e-320", "\"x_min\"", "{\"x\": 1}", "NaN", "99999999999999999999"};
+static int cmp_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* Every regular file of a directory, in name order (so a failure reproduces in the same order). */
+static int replay_dir(const char *dir, int *count)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        fprintf(stderr, "fuzz replay: cannot open %s\n", dir);
+        return 1;
+    }
+    char **names = NULL;
+    size_t n = 0, cap = 0;
+    int rc = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;) {
+        if (e->d_name[0] == '.')
+            continue;
+        if (n == cap) {
+            cap = cap ? 2 * cap : 64;
+            char **nn = realloc(names, cap * sizeof *names);
+            if (!nn) {
+                rc = 1;
+                break;
+            }
+            names = nn;
+        }
+        size_t len = strlen(dir) + strlen(e->d_name) + 2;
+        if (!(names[n] = malloc(len))) {
+            rc = 1;
+            break;
+        }
+        snprintf(names[n++], len, "%s/%s", dir, e->d_name);
+    }
+    closedir(d);
+    if (n)
+        qsort(names, n, sizeof *names, cmp_names);
+    for (size_t k = 0; k < n; k++) {
+        struct stat st;
+        if (!rc && stat(names[k], &st) == 0 && S_ISREG(st.st_mode)) {
+            rc = replay_file(names[k]);
+            ++*count;
+        }
+        free(names[k]);
+    }
+    free(names);
+    return rc;
+}
 
 int main(int argc, char **argv)
 {
-    if (argc < 4) {
-        fprintf(stderr, "usage: fuzz_main SECONDS ITERATIONS SEED_FILE...\n");
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s FILE_OR_DIRECTORY...\n", argv[0]);
         return 2;
     }
-    const double seconds = atof(argv[1]);
-    const long iterations = atol(argv[2]);
-    int nseeds = argc - 3;
-    char **seeds = calloc((size_t)nseeds, sizeof *seeds);
-    size_t *lens = calloc((size_t)nseeds, sizeof *lens);
-    size_t maxlen = 0;
-    for (int k = 0; k < nseeds; k++) {
-        seeds[k] = slurp(argv[3 + k], &lens[k]);
-        if (!seeds[k]) {
-            fprintf(stderr, "cannot read %s\n", argv[3 + k]);
-            return 2;
+    int count = 0;
+    for (int a = 1; a < argc; a++) {
+        struct stat st;
+        if (stat(argv[a], &st) != 0) {
+            fprintf(stderr, "fuzz replay: %s not found\n", argv[a]);
+            return 1;
         }
-        LLVMFuzzerTestOneInput((const uint8_t *)seeds[k], lens[k]);
-        if (lens[k] > maxlen)
-            maxlen = lens[k];
+        int rc = S_ISDIR(st.st_mode) ? replay_dir(argv[a], &count) : (++count, replay_file(argv[a]));
+        if (rc)
+            return 1;
     }
-    const size_t cap = 2 * maxlen + 256;
-    uint8_t *buf = malloc(cap);
-    const clock_t start = clock();
-    long it = 0;
-    for (; it < iterations; it++) {
-        if ((double)(clock() - start) / CLOCKS_PER_SEC > seconds)
-            break;
-        int s = (int)(next() % (uint64_t)nseeds);
-        size_t len = lens[s];
-        memcpy(buf, seeds[s], len);
-        int edits = 1 + (int)(next() % 8);
-        for (int e = 0; e < edits && len > 0; e++) {
-            size_t at = next() % len;
-            switch (next() % 6) {
-            case 0: buf[at] ^= (uint8_t)(1u << (next() % 8)); break;
-            case 1: buf[at] = (uint8_t)next(); break;
-            case 2: /* delete a run */ {
-                size_t n = 1 + next() % 16;
-                if (at + n > len)
-                    n = len - at;
-                memmove(buf + at, buf + at + n, len - at - n);
-                len -= n;
-                break;
-            }
-            case 3: /* insert a JSON token */ {
-                const char *t = tokens[next() % (sizeof tokens / sizeof tokens[0])];
-                size_t n = strlen(t);
-                if (len + n < cap) {
-                    memmove(buf + at + n, buf + at, len - at);
-                    memcpy(buf + at, t, n);
-                    len += n;
-                }
-                break;
-            }
-            case 4: /* splice from another seed */ {
-                int o = (int)(next() % (uint64_t)nseeds);
-                size_t from = next() % lens[o], n = 1 + next() % 64;
-                if (from + n > lens[o])
-                    n = lens[o] - from;
-                if (at + n <= cap)
-                    memcpy(buf + at, seeds[o] + from, n);
-                if (at + n > len)
-                    len = at + n;
-                break;
-            }
-            default: len = at; break;
-            }
-        }
-        LLVMFuzzerTestOneInput(buf, len);
+    if (count == 0) {
+        fprintf(stderr, "fuzz replay: no input found\n");
+        return 1;
     }
-    printf("fuzz_main: %ld inputs from %d seeds, no crash\n", it, nseeds);
-    for (int k = 0; k < nseeds; k++)
-        free(seeds[k]);
-    free(seeds);
-    free(lens);
-    free(buf);
+    printf("fuzz replay: %d inputs ran without a crash\n", count);
     return 0;
 }

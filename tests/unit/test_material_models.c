@@ -531,6 +531,25 @@ static pm_material granular(void)
     return make("granular", NAN, NAN, p);
 }
 
+/* The step bound of the granular model adds the bulk viscosity's explicit limit to its wave speed: at
+ * seed 004's mu = 1e4 Pa s, rho = 1500 and 50 mm cells, 4 mu / (rho h) = 533 m/s against a P-wave of a
+ * few m/s at p0, so a step from the wave speed alone would be 60 times too long. */
+static void granular_step_speed(void **unused)
+{
+    (void)unused;
+    pm_material m = granular();
+    double st[PM_MAT_MAX_STATE] = {0};
+    const double c = m.ops->wave_speed(&m, st, 1500), h = 0.05;
+    assert_true(c > 1 && c < 20);
+    const double s = pm_material_signal_speed(&m, st, 1500, h);
+    assert_true(fabs(s - (c + 4 * 1e4 / (1500 * h))) <= 1e-12 * s);
+    /* halving the cell doubles the viscous part */
+    assert_true(fabs(pm_material_signal_speed(&m, st, 1500, h / 2) - (c + 8 * 1e4 / (1500 * h))) <= 1e-12 * s);
+    /* models without a rate viscosity: the wave speed alone */
+    pm_material e = make("linear_elastic", 1e7, 0.3, NULL);
+    assert_true(pm_material_signal_speed(&e, NULL, 1000, h) == pm_material_elastic_wave_speed(&e, NULL, 1000));
+}
+
 static void granular_law(void **unused)
 {
     (void)unused;
@@ -707,6 +726,7 @@ int main(void)
         cmocka_unit_test(vp_newton_equals_closed_form),
         cmocka_unit_test(vp_no_tension),
         cmocka_unit_test(granular_law),
+        cmocka_unit_test(granular_step_speed),
         cmocka_unit_test(linear_elastic_tangent),
         cmocka_unit_test(neo_hookean_tangent),
         cmocka_unit_test(rigid_rotation_all_models),

@@ -52,31 +52,6 @@
 #define STRAY 1.1
 #define REST_WINDOW 0.5
 
-static int by_value(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The deposit front (the particles' x sorted, up to the first gap wider than 2 h); the farthest x in
- * *xmax. */
-static double deposit_front(const pm_sim *s, double h, double *xmax)
-{
-    const size_t n = s->p.n;
-    double *xs = malloc(n * sizeof *xs);
-    if (!xs)
-        return NAN;
-    for (size_t i = 0; i < n; i++)
-        xs[i] = s->p.x[2 * i];
-    qsort(xs, n, sizeof *xs, by_value);
-    double front = xs[0];
-    for (size_t i = 1; i < n && xs[i] - front <= 2 * h; i++)
-        front = xs[i];
-    *xmax = xs[n - 1];
-    free(xs);
-    return front;
-}
-
 int main(int argc, char **argv)
 {
     vu_init(argc, argv);
@@ -103,7 +78,7 @@ int main(int argc, char **argv)
             break;
         }
         if (isnan(front_before) && s->t >= t_before)
-            front_before = deposit_front(s, h, &xmax);
+            front_before = vu_deposit_front(s, 2 * h, &xmax);
         if (s->step % 50 == 0) {
             pm_sim_energy(s, &ke, &se, &ge);
             ke_peak = fmax(ke_peak, ke);
@@ -119,7 +94,7 @@ int main(int argc, char **argv)
             hw = fmax(hw, s->p.x[2 * i + 1]);
         jmax = fmax(jmax, s->p.vol[i] / s->p.vol0[i]);
     }
-    const double front = deposit_front(s, h, &xmax);
+    const double front = vu_deposit_front(s, 2 * h, &xmax);
     const double law = 1.2 * ASPECT, runout = (front - L0) / L0;
     printf("front %.4f m, farthest particle %.4f m, height at the wall %.4f m, kinetic energy %.4g J (peak %.4g J)\n",
            front, xmax, hw, ke, ke_peak);

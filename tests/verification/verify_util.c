@@ -17,6 +17,18 @@ void vu_init(int argc, char **argv)
         vu_dir = argv[1];
 }
 
+int vu_small(void)
+{
+    static int said;
+    const char *e = getenv("PMECH_VERIFY_SMALL");
+    const int small = e && *e && strcmp(e, "0") != 0;
+    if (small && !said) {
+        said = 1;
+        printf("PMECH_VERIFY_SMALL: the small variant of this test runs\n");
+    }
+    return small;
+}
+
 void vu_load(const char *rel, pm_case *c)
 {
     char path[2048];
@@ -175,4 +187,29 @@ void vu_plot_history(const char *png, const char *title, const char *ylabel, con
     o.legend = 1;
     if (pm_plot_lines(png, s, ns, &o) != 0)
         fprintf(stderr, "plot %s: %s\n", png, pm_error_message());
+}
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double vu_deposit_front(const pm_sim *s, double gap, double *xmax)
+{
+    const size_t n = s->p.n;
+    double *xs = malloc(n * sizeof *xs);
+    if (!xs || n == 0) {
+        free(xs);
+        return NAN;
+    }
+    for (size_t i = 0; i < n; i++)
+        xs[i] = s->p.x[2 * i];
+    qsort(xs, n, sizeof *xs, by_value);
+    double front = xs[0];
+    for (size_t i = 1; i < n && xs[i] - front <= gap; i++)
+        front = xs[i];
+    *xmax = xs[n - 1];
+    free(xs);
+    return front;
 }

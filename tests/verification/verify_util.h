@@ -13,6 +13,14 @@ extern const char *vu_dir;
 /** Parse argv; call first. */
 void vu_init(int argc, char **argv);
 
+/**
+ * 1 when the environment asks for the small variant (PMECH_VERIFY_SMALL set and not "0"): the tests
+ * that take minutes in a release build then run a smaller case they document, judged with tolerances
+ * measured for it, so that sanitizer builds (make asan, 10-30 times slower) still check their paths.
+ * The first call prints a line saying the small variant runs.
+ */
+int vu_small(void);
+
 /** Load a case relative to the repository root (e.g. "examples/dyka_bar/case.json"); aborts on error. */
 void vu_load(const char *rel, pm_case *c);
 
@@ -61,5 +69,12 @@ void vu_write_csv(const char *path, const char *header, const double *data, size
  */
 void vu_plot_history(const char *png, const char *title, const char *ylabel, const double *t, const double *v,
                      size_t n, const char *label, const double *ref, const char *ref_label);
+
+/**
+ * The front of a granular deposit along x: the particles' x sorted, up to the first gap wider than
+ * @p gap (a particle beyond such a gap has left the deposit); the farthest particle's x in *xmax.
+ * Returns NAN when out of memory.
+ */
+double vu_deposit_front(const pm_sim *s, double gap, double *xmax);
 
 #endif
