@@ -26,11 +26,24 @@
  *  1.341 at H/10, H/20, H/40 (examples/slope_fos, study.sh), so at H/40 it is 4.2 % below 1.4 and
  *  the trend points further down (part of it may be Newton's difficulty on the finer grid: F = 1.2
  *  already needs step cuts there). The H/20 row is judged as the answer of that mesh, which is what
- *  users run; H/40 takes 190 s, too long for this suite, and is expected to fail a 2 % check.
+ *  users run. H/40 is judged within the same 5 % by examples/slope_fos/study.sh (it exits 1 when
+ *  H/20 or H/40 is outside), not here: even the two trials that decide "within 5 %" at H/40, F = 1.33
+ *  must hold and F = 1.47 must fail, take minutes of one core (F = 1.33 holds after 196 Newton
+ *  iterations and 5 step cuts, about 60 s of CPU on the loaded machine; the failing trial costs
+ *  more), beyond the suite's budget of a minute per test. Its margin is small (bracket 1.331-1.350
+ *  against the band's lower end 1.33): a finer mesh would likely fall out of the band.
  *  - RKPM (rk_cubic, one node per cell: node spacing H/10, 220 nodes): judged within 10 %, the
  *    over-estimate to be expected of a discretisation this coarse (MPM at the same spacing is 8 %
  *    high). It lands within 2 %; likely because one smoothed integration point per node constrains
  *    isochoric flow far less than four points per linear quad (not isolated further).
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): the MPM H/10 row alone, judged within 10 %,
+ * with Newton allowed 4 step cuts instead of 8. A failing trial spends nearly all the run time in its
+ * cuts (at H/10: 580-670 Newton iterations with 8 cuts, 137-143 with 4, against 5-25 for a trial that
+ * holds); fewer cuts can only make a trial fail sooner, and every trial of this search that holds does
+ * so with no cut, so the factor found is the same (measured: 1.509 with 4 cuts as with 8, 8 % high from
+ * the locking above). A slope that keeps no strength (the search's floor, 1.2) or far too much (its
+ * ceiling, 1.8) is outside 10 %.
  */
 #include "verify_util.h"
 
@@ -83,6 +96,12 @@ int main(int argc, char **argv)
     pm_case c;
     vu_load("tests/verification/cases/slope_fos.json", &c);
     int ok = 1;
+    if (vu_small()) {
+        c.analysis.newton.max_step_cuts = 4;
+        ok &= row(&c, "MPM linear, 2 x 2 points per cell, 4 step cuts", PM_METHOD_MPM, "linear", 1.0, 2, 0.10);
+        pm_case_free(&c);
+        return ok ? 0 : 1;
+    }
     ok &= row(&c, "MPM linear, 2 x 2 points per cell", PM_METHOD_MPM, "linear", 0.5, 2, 0.05);
     ok &= row(&c, "MPM linear, 2 x 2 points per cell", PM_METHOD_MPM, "linear", 1.0, 2, -1);
     ok &= row(&c, "RKPM rk_cubic, a node per cell", PM_METHOD_RKPM, "rk_cubic", 1.0, 1, 0.10);
