@@ -262,7 +262,12 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
         memcpy(&ct->surface[k].f, a + (n + k) * FORCE_COLS, sizeof(pm_contact_force));
     }
     free(a);
-    return rc;
+    if (rc || ((pm_sim *)arg)->c->analysis.type == PM_ANALYSIS_EXPLICIT)
+        return rc;
+    double *held;
+    size_t rows;
+    pm_check(pm_contact_implicit_history(ct, &held, &rows));
+    return ck_read(&ck->f, g, "held", CK_DOUBLE, held, rows, PM_DIM);
 }
 
 static int read_run(pm_checkpoint *ck, hid_t g, void *arg)
