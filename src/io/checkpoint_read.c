@@ -262,12 +262,19 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
         memcpy(&ct->surface[k].f, a + (n + k) * FORCE_COLS, sizeof(pm_contact_force));
     }
     free(a);
-    if (rc || ((pm_sim *)arg)->c->analysis.type == PM_ANALYSIS_EXPLICIT)
-        return rc;
-    double *held;
-    size_t rows;
-    pm_check(pm_contact_implicit_history(ct, &held, &rows));
-    return ck_read(&ck->f, g, "held", CK_DOUBLE, held, rows, PM_DIM);
+    size_t rows = 0;
+    if (!rc)
+        rc = ck_rows(&ck->f, g, "held", &rows);
+    if (!rc && rows > 0) { /* allocated as pm_contact_implicit_begin() would at the first implicit step */
+        const size_t cnt = PM_DIM * n * ct->n_nodes;
+        if (!ct->held)
+            ct->held = calloc(cnt, sizeof *ct->held);
+        if (!ct->held_next)
+            ct->held_next = calloc(cnt, sizeof *ct->held_next);
+        rc = ct->held && ct->held_next ? ck_read(&ck->f, g, "held", CK_DOUBLE, ct->held, n * ct->n_nodes, PM_DIM)
+                                       : pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
+    }
+    return rc;
 }
 
 static int read_run(pm_checkpoint *ck, hid_t g, void *arg)

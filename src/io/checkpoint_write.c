@@ -217,13 +217,10 @@ static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
     if (!rc)
         rc = ck_write(f, g, "force", CK_DOUBLE, a + n * FORCE_COLS, n, FORCE_COLS);
     free(a);
-    if (rc || r->s->c->analysis.type == PM_ANALYSIS_EXPLICIT)
-        return rc;
-    /* implicit steps build each node's contact force on the last step's */
-    double *held;
-    size_t rows;
-    pm_check(pm_contact_implicit_history(r->s->contact, &held, &rows));
-    return ck_write(f, g, "held", CK_DOUBLE, held, rows, PM_DIM);
+    /* implicit steps build each contact node's force on the one it held at the last step */
+    if (!rc)
+        rc = ck_write(f, g, "held", CK_DOUBLE, ct->held, ct->held ? n * ct->n_nodes : 0, PM_DIM);
+    return rc;
 }
 
 /* contact_pairs: the impulses between body fields since the last contact_forces.csv row */
