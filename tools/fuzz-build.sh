@@ -18,6 +18,7 @@ if ! clang -fsanitize=fuzzer,address,undefined "$probe/p.c" -o "$probe/p" >"$pro
   exit 0
 fi
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S "$src" -B "$dir" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=Debug -DPMECH_FUZZ=ON >"$dir.configure.log" 2>&1 ||
-  { cat "$dir.configure.log"; exit 1; }
+mkdir -p "$dir"
+cmake -S "$src" -B "$dir" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=Debug -DPMECH_FUZZ=ON >"$dir/configure.log" 2>&1 ||
+  { cat "$dir/configure.log"; exit 1; }
 cmake --build "$dir" -j "$jobs" --target fuzz_targets

@@ -17,13 +17,23 @@ done
 src=$(cd "$(dirname "$0")/.." && pwd)
 crashes="$build/fuzz-crashes"
 mkdir -p "$crashes"
-before=$(ls "$crashes" | wc -l)
+# libFuzzer also saves slow-unit-* files (an input slower than 10 s): information, not a failure
+failures() { ls -t "$crashes" | grep -v -e '-slow-unit-'; }
+before=$(failures | wc -l)
+# Dictionaries: the case and driver keys and words are every quoted identifier of the readers' sources
+# (always current) after tests/fuzz/json.dict; the Gmsh one is tests/fuzz/gmsh.dict.
+mkdir -p "$build/fuzz-dict"
+grep -oh '"[a-z][a-z0-9_]*"' "$src"/src/io/case_*.c "$src"/src/io/json_read.c "$src"/src/io/material_read.c \
+  "$src"/src/io/driver_file.c "$src"/src/material/*.c | sort -u | sed 's/"/\\"/g; s/.*/"&"/' >"$build/fuzz-dict/words.dict"
+cat "$src/tests/fuzz/json.dict" "$build/fuzz-dict/words.dict" >"$build/fuzz-dict/case_sim.dict"
+cp "$build/fuzz-dict/case_sim.dict" "$build/fuzz-dict/driver.dict"
+cp "$src/tests/fuzz/gmsh.dict" "$build/fuzz-dict/gmsh.dict"
 pids=""
 for t in "$@"; do
   mkdir -p "$build/fuzz-work/$t"
   echo "fuzz: $t for $seconds s (log: $build/fuzz-$t.log)"
   nice -n 10 "$build/tests/fuzz_$t" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 \
-    -print_final_stats=1 -artifact_prefix="$crashes/$t-" \
+    -print_final_stats=1 -artifact_prefix="$crashes/$t-" -dict="$build/fuzz-dict/$t.dict" \
     "$build/fuzz-work/$t" "$build/fuzz-seeds/$t" "$src/tests/fuzz/corpus/$t" >"$build/fuzz-$t.log" 2>&1 &
   pids="$pids $!"
 done
@@ -36,10 +46,10 @@ for t in "$@"; do
   cov=$(grep -o 'cov: [0-9]*' "$build/fuzz-$t.log" | tail -1)
   echo "fuzz: $t: ${runs:-?} inputs, $cov, corpus $(ls "$build/fuzz-work/$t" | wc -l) files"
 done
-after=$(ls "$crashes" | wc -l)
+after=$(failures | wc -l)
 if [ "$status" -ne 0 ] || [ "$after" -ne "$before" ]; then
   echo "fuzz: FAILED: inputs saved in $crashes:"
-  ls -t "$crashes" | head -n $((after - before + 1)) | sed 's/^/  /'
+  failures | head -n $((after - before + 1)) | sed 's/^/  /'
   echo "fuzz: reproduce with $build/tests/fuzz_TARGET FILE; add the input to tests/fuzz/corpus/TARGET once fixed"
   exit 1
 fi

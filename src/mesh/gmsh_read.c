@@ -385,7 +385,7 @@ int pm_msh_parse(const char *path, pm_msh *m)
     size_t len = 0, cap = 0;
     for (;;) {
         if (len + 65536 + 1 > cap) {
-            cap = cap ? 2 * cap : 1 << 20;
+            cap = cap ? 2 * cap : 1 << 17; /* a small mesh in one allocation (a larger first one cost more than the parse) */
             char *nb = realloc(buf, cap);
             if (!nb) {
                 free(buf);

@@ -25,6 +25,12 @@
  *    not fall (run-out 2 m) or flows without strength (beyond the 6 m grid) is 60 % or more away.
  * Reported, not judged: the same figures at t = 0.6 and 1.28 s, and the time a GMM-MLS run without
  * the conditioning rule (moment matrices admitted up to condition number 1e6) stops.
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): h = 0.2 m (800 points) to t = 0.6 s, the
+ * same comparison judged at 0.6 s within 5 %, and the run without the conditioning rule left out.
+ * Measured: run-out +1.7 % (MLS) and +1.1 % (LME), height at the wall -1.6 % and -1.4 % of MPM's
+ * (2.558 m and 3.297 m); early in the collapse the methods have had less time to part. A column that
+ * has not started to fall (run-out 2 m, height 4 m) is 21 % or more away.
  */
 #include "verify_util.h"
 
@@ -36,6 +42,8 @@
 
 #define NSNAP 3
 static const double snap_t[NSNAP] = {0.6, 1.28, 2.0};
+static int n_snap = NSNAP; /* 1 in the small variant */
+#define SMALL_TOL 0.05
 
 typedef struct result {
     double runout[NSNAP], height[NSNAP], secs, t_end;
@@ -67,11 +75,14 @@ static result run(pm_method method, const char *shape, double cond_tol)
     c.method = method;
     snprintf(c.shape_function, sizeof c.shape_function, "%s", shape);
     c.max_condition = cond_tol;
+    if (n_snap < NSNAP) /* the small variant's cells twice as large */
+        for (int d = 0; d < PM_DIM; d++)
+            c.grid.cells[d] /= 2;
     result r = {0};
     const double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);
     int k = 0;
-    while (k < NSNAP) {
+    while (k < n_snap) {
         double dt = vu_dt(s);
         if (s->t + dt > snap_t[k])
             dt = snap_t[k] - s->t;
@@ -100,10 +111,11 @@ static int judge(const char *label, const result *g, const result *ref)
 {
     char bench[64], q[128];
     snprintf(bench, sizeof bench, "column collapse (%s)", label);
-    int ok = vu_report(bench, "end time reached (s)", g->t_end, 2.0, g->t_end - 2.0, 1e-9, g->secs);
-    for (int k = 0; k < NSNAP && g->t_end >= snap_t[k] - 1e-9; k++) {
-        const double tol = k == NSNAP - 1 ? 0.10 : -1;
-        snprintf(q, sizeof q, "run-out at t = %.2f s (m), vs MPM, h = 0.1", snap_t[k]);
+    const double t_end = snap_t[n_snap - 1];
+    int ok = vu_report(bench, "end time reached (s)", g->t_end, t_end, g->t_end - t_end, 1e-9, g->secs);
+    for (int k = 0; k < n_snap && g->t_end >= snap_t[k] - 1e-9; k++) {
+        const double tol = k < n_snap - 1 ? -1 : n_snap < NSNAP ? SMALL_TOL : 0.10;
+        snprintf(q, sizeof q, "run-out at t = %.2f s (m), vs MPM, h = %.1f", snap_t[k], n_snap < NSNAP ? 0.2 : 0.1);
         ok &= vu_report(bench, q, g->runout[k], ref->runout[k], (g->runout[k] - ref->runout[k]) / ref->runout[k],
                         tol, g->secs);
         snprintf(q, sizeof q, "height at the wall at t = %.2f s (m), vs MPM", snap_t[k]);
@@ -116,13 +128,17 @@ static int judge(const char *label, const result *g, const result *ref)
 int main(int argc, char **argv)
 {
     vu_init(argc, argv);
+    if (vu_small())
+        n_snap = 1;
     const result mpm = run(PM_METHOD_MPM, "linear", NAN);
     const result mls = run(PM_METHOD_GMM, "mls", NAN);
     const result lme = run(PM_METHOD_GMM, "lme", NAN);
-    const result bare = run(PM_METHOD_GMM, "mls", 1e6);
     int ok = judge("GMM-MLS", &mls, &mpm);
     ok &= judge("GMM-LME", &lme, &mpm);
-    vu_report("column collapse (GMM-MLS)", "time reached without the conditioning rule (s)", bare.t_end, 2.0,
-              bare.t_end - 2.0, -1, bare.secs);
+    if (n_snap == NSNAP) {
+        const result bare = run(PM_METHOD_GMM, "mls", 1e6);
+        vu_report("column collapse (GMM-MLS)", "time reached without the conditioning rule (s)", bare.t_end, 2.0,
+                  bare.t_end - 2.0, -1, bare.secs);
+    }
     return ok ? 0 : 1;
 }

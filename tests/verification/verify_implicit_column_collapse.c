@@ -21,6 +21,11 @@
  *  - height of the soil at the wall (largest y of the points within 0.1 m of it) within 5 %, for the
  *    same reasons.
  * Reported: the run-out at t = 0.6 s and 1.28 s, Newton iterations per step, step cuts, seconds.
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): h = 0.2 m (800 points) to t = 0.6 s, the
+ * same comparison judged at 0.6 s within 5 % (SMALL_TOL). Measured: run-out -0.9 %, height at the wall
+ * +0.7 % of the explicit run's (2.558 m, 3.297 m); a column that has not started to fall (run-out 2 m,
+ * height 4 m) is 21 % or more away.
  */
 #include "verify_util.h"
 
@@ -34,6 +39,8 @@
 
 #define NSNAP 3
 static const double snap_t[NSNAP] = {0.6, 1.28, 2.0};
+static int n_snap = NSNAP; /* 1 in the small variant */
+#define SMALL_TOL 0.05
 
 typedef struct result {
     double runout[NSNAP], height[NSNAP], secs, t_end, assemble, solve;
@@ -64,7 +71,7 @@ static result run(pm_case *c, int implicit)
     const double t0 = vu_now();
     pm_sim *s = vu_sim(c, 1);
     int k = 0;
-    while (k < NSNAP) {
+    while (k < n_snap) {
         double dt = implicit ? c->analysis.dt : vu_dt(s);
         if (s->t + dt > snap_t[k])
             dt = snap_t[k] - s->t;
@@ -96,16 +103,28 @@ static result run(pm_case *c, int implicit)
     return r;
 }
 
+/* The coarse case, or for the small variant the same column on cells twice as large. */
+static void load(pm_case *c, int small)
+{
+    vu_load("tests/verification/cases/implicit_column_collapse.json", c);
+    if (small)
+        for (int d = 0; d < PM_DIM; d++)
+            c->grid.cells[d] /= 2;
+}
+
 int main(int argc, char **argv)
 {
     vu_init(argc, argv);
     int ok = 1;
+    const int small = vu_small();
+    if (small)
+        n_snap = 1;
     pm_case c;
-    vu_load("tests/verification/cases/implicit_column_collapse.json", &c);
+    load(&c, small);
     const double dt = c.analysis.dt;
     result im = run(&c, 1);
     pm_case_free(&c);
-    vu_load("tests/verification/cases/implicit_column_collapse.json", &c);
+    load(&c, small);
     result ex = run(&c, 0);
     printf("explicit: %ld steps, %.1f s; implicit: %ld steps of %g s, %.2f Newton iterations per step, %ld cuts, "
            "%.1f s (assembly %.1f s, solves %.1f s)\n",
@@ -113,12 +132,14 @@ int main(int argc, char **argv)
     printf("PERF|column collapse h = 0.1, implicit, dt = %g|%zu|%ld|%.4g|%.2f|%.4g|%.4g|%ld\n", dt, (size_t)3200,
            im.steps, im.secs / im.steps, (double)im.iterations / im.steps, im.assemble / im.steps,
            im.solve / im.steps, im.cuts);
-    ok &= vu_report("column collapse (implicit)", "end time reached (s)", im.t_end, 2.0, im.t_end - 2.0, 1e-9,
+    const double t_end = snap_t[n_snap - 1];
+    ok &= vu_report("column collapse (implicit)", "end time reached (s)", im.t_end, t_end, im.t_end - t_end, 1e-9,
                     im.secs);
-    for (int k = 0; k < NSNAP; k++) {
+    for (int k = 0; k < n_snap; k++) {
         char q[96];
-        const double tol = k == NSNAP - 1 ? 0.05 : -1;
-        snprintf(q, sizeof q, "run-out at t = %.2f s (m), implicit vs explicit MUSL, h = 0.1", snap_t[k]);
+        const double tol = k < n_snap - 1 ? -1 : small ? SMALL_TOL : 0.05;
+        snprintf(q, sizeof q, "run-out at t = %.2f s (m), implicit vs explicit MUSL, h = %.1f", snap_t[k],
+                 small ? 0.2 : 0.1);
         ok &= vu_report("column collapse (implicit)", q, im.runout[k], ex.runout[k],
                         (im.runout[k] - ex.runout[k]) / ex.runout[k], tol, im.secs);
         snprintf(q, sizeof q, "height at the wall at t = %.2f s (m), implicit vs explicit", snap_t[k]);

@@ -18,6 +18,11 @@
  *   - rolling, not sliding: the spin omega (angular momentum about the centre of mass over its polar
  *     moment of inertia) against v / R, as the least-squares ratio of -omega R to v over the samples.
  * and reports the centre's rise off the plane at the end. The tolerances are in ROWS, with their reasons.
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): the step dt1 only, a seventh of the work,
+ * judged as the finest step is. The step hardly matters here (measured, dt1 / dt3: acceleration 0.858 /
+ * 0.857 of the exact one for MPM, 0.719 / 0.715 GMM-MLS, 0.753 / 0.748 GMM-LME; spin 0.997 / 0.997,
+ * 0.999 / 1.004, 0.992 / 0.999), so the same tolerances hold.
  */
 #include "verify_util.h"
 
@@ -160,10 +165,11 @@ int main(int argc, char **argv)
         return 2;
     }
     int ok = 1;
+    const int n_dt = vu_small() ? 1 : N_DT;
     for (int ir = 0; ir < N_ROWS; ir++) {
         const rd_row *row = &ROWS[ir];
         rd_result res[N_DT];
-        for (int k = 0; k < N_DT; k++) {
+        for (int k = 0; k < n_dt; k++) {
             const double dt = dt1 / (1 << k);
             char csv[96], q[128];
             snprintf(csv, sizeof csv, "rolling_disk_%s_%s_dt%d.csv", row->label, row->shape_function, k + 1);
@@ -182,15 +188,15 @@ int main(int argc, char **argv)
             printf("  %s: a = %.4f (%.4f of %.4f), spin %.4f, rise %.3f mm\n", q, res[k].acc, res[k].acc / a_ref,
                    a_ref, res[k].spin, 1e3 * res[k].rise);
         }
-        const rd_result *f = &res[N_DT - 1];
+        const rd_result *f = &res[n_dt - 1];
         if (!f->ok)
             continue;
         char q[128];
-        snprintf(q, sizeof q, "%s, dt3: centre acceleration (m/s^2), fit of u = a t^2/2", row->label);
+        snprintf(q, sizeof q, "%s, dt%d: centre acceleration (m/s^2), fit of u = a t^2/2", row->label, n_dt);
         ok &= vu_report("rolling disk", q, f->acc, a_ref, (f->acc - a_ref) / a_ref, row->tol_acc, f->secs);
-        snprintf(q, sizeof q, "%s, dt3: spin -omega R / v (least squares over the samples)", row->label);
+        snprintf(q, sizeof q, "%s, dt%d: spin -omega R / v (least squares over the samples)", row->label, n_dt);
         ok &= vu_report("rolling disk", q, f->spin, 1.0, f->spin - 1.0, row->tol_spin, f->secs);
-        snprintf(q, sizeof q, "%s, dt3: rise of the centre off the plane at the end (mm)", row->label);
+        snprintf(q, sizeof q, "%s, dt%d: rise of the centre off the plane at the end (mm)", row->label, n_dt);
         vu_report("rolling disk", q, 1e3 * f->rise, 0.0, 1e3 * f->rise, -1, f->secs);
     }
     return ok ? 0 : 1;

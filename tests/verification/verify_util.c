@@ -17,6 +17,18 @@ void vu_init(int argc, char **argv)
         vu_dir = argv[1];
 }
 
+int vu_small(void)
+{
+    static int said;
+    const char *e = getenv("PMECH_VERIFY_SMALL");
+    const int small = e && *e && strcmp(e, "0") != 0;
+    if (small && !said) {
+        said = 1;
+        printf("PMECH_VERIFY_SMALL: the small variant of this test runs\n");
+    }
+    return small;
+}
+
 void vu_load(const char *rel, pm_case *c)
 {
     char path[2048];

@@ -13,6 +13,14 @@ extern const char *vu_dir;
 /** Parse argv; call first. */
 void vu_init(int argc, char **argv);
 
+/**
+ * 1 when the environment asks for the small variant (PMECH_VERIFY_SMALL set and not "0"): the tests
+ * that take minutes in a release build then run a smaller case they document, judged with tolerances
+ * measured for it, so that sanitizer builds (make asan, 10-30 times slower) still check their paths.
+ * The first call prints a line saying the small variant runs.
+ */
+int vu_small(void);
+
 /** Load a case relative to the repository root (e.g. "examples/dyka_bar/case.json"); aborts on error. */
 void vu_load(const char *rel, pm_case *c);
 
