@@ -63,7 +63,8 @@
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
  * alone, so an explicit checkpoint needs nothing from here beyond the case and t. Implicit runs keep
- * one more thing across steps: the force of every node touching a surface (held).
+ * one more thing across steps: the force of every node touching a surface (held), which checkpoints
+ * store (pm_contact_implicit_history).
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -277,6 +278,12 @@ void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f);
  */
 int pm_contact_implicit_begin(pm_contact *ct, const pm_grid *g, const pm_approx *a, const pm_particles *p,
                               double t0, double t1);
+
+/**
+ * The nodal force history of implicit steps (pm_contact::held), allocated on the first call: @p rows
+ * rows of PM_DIM, one per (surface, node). For checkpoints. @return PM_OK, PM_ENOMEM
+ */
+int pm_contact_implicit_history(pm_contact *ct, double **held, size_t *rows);
 
 /**
  * Implicit steps: add the penalty contact terms at the increments w->du to the internal force

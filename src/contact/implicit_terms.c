@@ -28,18 +28,27 @@
 #include <stdlib.h>
 #include <string.h>
 
+int pm_contact_implicit_history(pm_contact *ct, double **held, size_t *rows)
+{
+    *rows = ct->n_surfaces * ct->n_nodes;
+    if (!ct->held) {
+        ct->held = calloc(*rows * PM_DIM + 1, sizeof *ct->held);
+        ct->held_next = calloc(*rows * PM_DIM + 1, sizeof *ct->held_next);
+        if (!ct->held || !ct->held_next)
+            return pm_error_set(PM_ENOMEM, "out of memory for the contact forces of %zu nodes", ct->n_nodes);
+    }
+    *held = ct->held;
+    return PM_OK;
+}
+
 int pm_contact_implicit_begin(pm_contact *ct, const pm_grid *g, const pm_approx *a, const pm_particles *p,
                               double t0, double t1)
 {
     if (!ct)
         return PM_OK;
-    if (!ct->held && ct->n_surfaces) {
-        const size_t n = ct->n_surfaces * ct->n_nodes * PM_DIM;
-        ct->held = calloc(n, sizeof *ct->held);
-        ct->held_next = calloc(n, sizeof *ct->held_next);
-        if (!ct->held || !ct->held_next)
-            return pm_error_set(PM_ENOMEM, "out of memory for the contact forces of %zu nodes", ct->n_nodes);
-    }
+    double *held;
+    size_t rows;
+    pm_check(pm_contact_implicit_history(ct, &held, &rows));
         ct->surface_gaps = 1; /* the incremental penalty needs no head start (see the top) */
     pm_contact_detect(ct, g, t0);
     pm_contact_gaps(ct, a, p);

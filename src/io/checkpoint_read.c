@@ -262,6 +262,18 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
         memcpy(&ct->surface[k].f, a + (n + k) * FORCE_COLS, sizeof(pm_contact_force));
     }
     free(a);
+    size_t rows = 0;
+    if (!rc)
+        rc = ck_rows(&ck->f, g, "held", &rows);
+    if (!rc && rows > 0) { /* allocated as pm_contact_implicit_begin() would at the first implicit step */
+        const size_t cnt = PM_DIM * n * ct->n_nodes;
+        if (!ct->held)
+            ct->held = calloc(cnt, sizeof *ct->held);
+        if (!ct->held_next)
+            ct->held_next = calloc(cnt, sizeof *ct->held_next);
+        rc = ct->held && ct->held_next ? ck_read(&ck->f, g, "held", CK_DOUBLE, ct->held, n * ct->n_nodes, PM_DIM)
+                                       : pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
+    }
     return rc;
 }
 

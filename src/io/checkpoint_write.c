@@ -217,6 +217,9 @@ static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
     if (!rc)
         rc = ck_write(f, g, "force", CK_DOUBLE, a + n * FORCE_COLS, n, FORCE_COLS);
     free(a);
+    /* implicit steps build each contact node's force on the one it held at the last step */
+    if (!rc)
+        rc = ck_write(f, g, "held", CK_DOUBLE, ct->held, ct->held ? n * ct->n_nodes : 0, PM_DIM);
     return rc;
 }
 

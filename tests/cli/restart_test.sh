@@ -3,7 +3,8 @@
 # outright after a periodic checkpoint, and then continued with --restart writes the same bytes into every
 # output file (frames, pictures, pvd, every CSV log) as the same run never stopped; cmp decides, nothing is
 # tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
-# implicit Newmark dynamics, two bodies in contact (contact_pairs). What is not covered (GMM, another
+# implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), two
+# bodies in contact (contact_pairs). What is not covered (GMM, another
 # case, a damaged file) is refused with exit 2.
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
@@ -65,6 +66,12 @@ c = json.load(open(src + "/tests/verification/cases/implicit_dyka_bar.json"))
 c["analysis"]["end_time"] = 0.1
 c["output"] = {"interval": 0.002}
 json.dump(c, open("implicit.json", "w"), indent=1)
+# implicit friction: a block sliding on a friction side, each contact node's force kept between steps
+c = json.load(open(src + "/tests/verification/cases/implicit_sliding_block.json"))
+c["boundary_conditions"][0]["coefficient"] = 0.1
+c["analysis"]["end_time"] = 0.04
+c["output"] = {"interval": 0.004}
+json.dump(c, open("implicit_friction.json", "w"), indent=1)
 # a checkpoint every 0.1 s of a 0.6 s run: killed outright (SIGKILL, no checkpoint of its own) after
 # the frame at 0.3 s, the run continues from the last checkpoint and replaces what was written after it
 c = json.load(open("musl_mc.json"))
@@ -84,6 +91,7 @@ PY
 stop_and_continue musl_mc INT particles_000004.vtu 130 2
 stop_and_continue flow TERM particles_000005.vtu 143
 stop_and_continue implicit INT particles_000005.vtu 130
+stop_and_continue implicit_friction INT particles_000004.vtu 130
 stop_and_continue contact_pairs INT particles_000010.vtu 130
 stop_and_continue periodic KILL particles_000016.vtu 137
 
