@@ -2,7 +2,7 @@
 # Installs the Debian packages pmech builds and tests with, when they are missing.
 # Runs apt-get only as root; otherwise it says what to install and lets the build try.
 set -e
-PKGS="build-essential cmake pkg-config time clang libclang-rt-dev libomp-dev libjansson-dev libsuitesparse-dev libcairo2-dev libexpat1-dev libhdf5-dev libcmocka-dev python3 python3-vtk9 python3-numpy python3-matplotlib python3-setuptools python3-venv python3-pip ffmpeg"
+PKGS="build-essential cmake pkg-config time clang libclang-rt-dev libomp-dev libjansson-dev libsuitesparse-dev libcairo2-dev libexpat1-dev libhdf5-dev hdf5-tools libcmocka-dev python3 python3-vtk9 python3-numpy python3-matplotlib python3-setuptools python3-venv python3-pip ffmpeg"
 missing=""
 for p in $PKGS; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Run-out study of planar cohesionless column collapses against the laws of Lube et al. (2005).
 
-    python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--flip 1.0] [--jobs 2] [--keep]
+    python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--flip 1.0] [--fbar] [--jobs 2] [--keep]
 
 For every aspect ratio a = H / L0 and mesh (cells per column width L0 = 1 m) it writes a case from
 case.json (the column, the grid and the end time scaled with a), runs it with one thread, and
 measures the final deposit from the last frame: the front (the particles' x sorted, up to the first
 gap wider than 2 h), the farthest particle, the height at the wall (largest y within h of it), the
-largest volume ratio V / V0 and the front's advance over the last 10 % of the run. Prints one
-markdown row per run and writes study.csv.
+largest volume ratio V / V0, the front's advance over the last 10 % of the run, and two measures
+of the deposit's body that converge where the front does not: where the deposit is 0.1 L0 deep and
+how far the centre of mass moved. Prints one markdown row per run and writes study.csv.
 
 Laws (planar collapses, experiments with sand, sugar, rice and glass beads): (L_f - L0) / L0 =
 1.2 a for a < 2.3 and 1.9 a^(2/3) above; H_f / L0 = a for a < 1.15 and a^(2/5) above.
@@ -74,8 +75,30 @@ def deposit(vtu, h):
     return front, xs[-1], height, a
 
 
-def make_case(base, a, cells, flip):
+def thick_point(vtu, thickness):
+    """The largest x at which the deposit is at least `thickness` deep: the particles as the boxes of
+    their half sizes, the right edge of the farthest box whose top is that high. Unlike the front it
+    does not follow a tail thinner than a cell or two, which every refinement resolves further."""
+    n, a = arrays(vtu)
+    pts, hs = a["Points"], a["half_size"]
+    k = len(hs) // n
+    best = 0.0
+    for i in range(n):
+        if pts[3 * i + 1] + hs[k * i + 1] >= thickness:
+            best = max(best, pts[3 * i] + hs[k * i])
+    return best
+
+
+def centre_x(vtu):
+    n, a = arrays(vtu)
+    m, pts = a["mass"], a["Points"]
+    return sum(m[i] * pts[3 * i] for i in range(n)) / sum(m)
+
+
+def make_case(base, a, cells, flip, fbar=False):
     c = copy.deepcopy(base)
+    if fbar:
+        c["analysis"]["fbar"] = "cell"
     L0, h = 1.0, 1.0 / cells
     H = a * L0
     reach = law_runout(a) + 1.0
@@ -96,12 +119,12 @@ def make_case(base, a, cells, flip):
     return c
 
 
-def run_one(pmech, work, a, cells, flip, keep):
-    name = "a%g_h%d" % (a, cells)
+def run_one(pmech, work, a, cells, flip, keep, fbar=False):
+    name = "a%g_h%d%s" % (a, cells, "_fbar" if fbar else "")
     d = work / name
     d.mkdir(parents=True, exist_ok=True)
     base = json.loads((HERE / "case.json").read_text())
-    case = make_case(base, a, cells, flip)
+    case = make_case(base, a, cells, flip, fbar)
     (d / "case.json").write_text(json.dumps(case, indent=1))
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
     t0 = time.time()
@@ -114,10 +137,13 @@ def run_one(pmech, work, a, cells, flip, keep):
     front, xmax, hw, arr = deposit(last, h)
     t_before, before = min(fr, key=lambda f: abs(f[0] - 0.9 * t_end))
     front_before = deposit(before, h)[0]
+    body = thick_point(last, 0.1) - 1.0
+    dx_cm = centre_x(last) - centre_x(fr[0][1])
     vol, v0 = arr.get("volume"), (h * h) / 4
     jmax = max(vol) / v0 if vol else float("nan")
     row = dict(a=a, cells=cells, t_end=t_end, end_time=case["analysis"]["end_time"], ok=proc.returncode == 0,
-               runout=front - 1.0, law_runout=law_runout(a), height=hw, law_height=law_height(a),
+               runout=front - 1.0, law_runout=law_runout(a), body=body, dx_cm=dx_cm, height=hw,
+               law_height=law_height(a),
                stray=xmax / front, creep=front - front_before, jmax=jmax, seconds=secs,
                message=(proc.stderr.strip().splitlines() or ["exit %d" % proc.returncode])[-1] if proc.returncode else "")
     if not keep:
@@ -131,6 +157,7 @@ def main():
     ap.add_argument("--aspect", default="0.5,1,2,4,8")
     ap.add_argument("--cells", default="10,20")
     ap.add_argument("--flip", type=float, default=None)
+    ap.add_argument("--fbar", action="store_true", help="analysis.fbar = cell")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default="study.out")
     ap.add_argument("--keep", action="store_true")
@@ -140,13 +167,15 @@ def main():
     runs = [(float(a), int(n)) for n in o.cells.split(",") for a in o.aspect.split(",")]
     rows = []
     with concurrent.futures.ThreadPoolExecutor(o.jobs) as ex:
-        futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep) for a, n in runs]
+        futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep, o.fbar) for a, n in runs]
         for f in concurrent.futures.as_completed(futs):
             r = f.result()
             rows.append(r)
-            print("a = %g, L0/h = %d: run-out %.3f (law %.3f, %+.1f %%), height %.3f (law %.3f, %+.1f %%), "
-                  "farthest/front %.3f, creep %.3f, J max %.1f, %s, %.0f s" %
+            print("a = %g, L0/h = %d: run-out %.3f (law %.3f, %+.1f %%), 0.1 L0 deep at %.3f, centre of mass "
+                  "moved %.3f m, height %.3f (law %.3f, %+.1f %%), farthest/front %.3f, creep %.3f, J max %.1f, "
+                  "%s, %.0f s" %
                   (r["a"], r["cells"], r["runout"], r["law_runout"], 100 * (r["runout"] / r["law_runout"] - 1),
+                   r["body"], r["dx_cm"],
                    r["height"], r["law_height"], 100 * (r["height"] / r["law_height"] - 1), r["stray"], r["creep"],
                    r["jmax"], "finished" if r["ok"] else "STOPPED: " + r["message"], r["seconds"]), flush=True)
     rows.sort(key=lambda r: (r["a"], r["cells"]))
@@ -155,11 +184,13 @@ def main():
         f.write(",".join(keys) + "\n")
         for r in rows:
             f.write(",".join(str(r[k]) for k in keys) + "\n")
-    print("| a | L0/h | (L_f - L0)/L0 | law | error | H_f/L0 | law | error | farthest/front | finished |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| a | L0/h | (L_f - L0)/L0 | law | error | 0.1 L0 deep | centre moved | H_f/L0 | law | error | "
+          "farthest/front | finished |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print("| %g | %d | %.2f | %.2f | %+.0f %% | %.2f | %.2f | %+.0f %% | %.2f | %s |" %
+        print("| %g | %d | %.2f | %.2f | %+.0f %% | %.3f | %.3f | %.2f | %.2f | %+.0f %% | %.2f | %s |" %
               (r["a"], r["cells"], r["runout"], r["law_runout"], 100 * (r["runout"] / r["law_runout"] - 1),
+               r["body"], r["dx_cm"],
                r["height"], r["law_height"], 100 * (r["height"] / r["law_height"] - 1), r["stray"],
                "yes" if r["ok"] else "no"))
     return 0

@@ -42,12 +42,14 @@ def frames(d):
 
 
 def rotation(d):
-    """Wall rotation (degrees, positive outward, i.e. the top moving towards -x) over time."""
-    out = []
+    """(time, wall rotation in degrees, positive outward, i.e. the top moving towards -x, and the
+    top's outward displacement in m) over time."""
+    out, x0 = [], None
     for r in csv.DictReader(open(os.path.join(d, "probes.csv"))):
         dx = float(r["wall_top.x"]) - float(r["wall_foot.x"])
         dy = float(r["wall_top.y"]) - float(r["wall_foot.y"])
-        out.append((float(r["time"]), math.degrees(math.atan2(-dx, dy))))
+        x0 = float(r["wall_top.x"]) if x0 is None else x0
+        out.append((float(r["time"]), math.degrees(math.atan2(-dx, dy)), x0 - float(r["wall_top.x"])))
     return out
 
 
@@ -97,17 +99,18 @@ def main():
     rot = rotation(d)
     print("Rankine active wedge: 45 + phi/2 = %.1f degrees from the horizontal (phi = %g)" %
           (45 + PHI_STORED / 2, PHI_STORED))
-    print("t after release (s) | wall rotation (deg) | run-out (m) | band angle (deg) | band top x (m)")
+    print("t after release (s) | wall rotation (deg) | wall top moved out (m) | run-out (m) | band angle (deg) | "
+          "band top x (m)")
     for t, p in frames(d):
         tt = t - T_RELEASE
         if tt < -1e-9:
             continue
         f = read_vtu(p)
-        r = min(rot, key=lambda a: abs(a[0] - t))[1]
+        r = min(rot, key=lambda a: abs(a[0] - t))
         band = shear_band(f, h)
         ang = "%.1f" % band[0] if band else "-"
         top = "%.2f" % max(band[1], key=lambda a: a[1])[0] if band else "-"
-        print("%6.2f | %6.2f | %5.2f | %s | %s" % (tt, r, run_out(f), ang, top))
+        print("%6.2f | %6.2f | %5.2f | %5.2f | %s | %s" % (tt, r[1], r[2], run_out(f), ang, top))
 
 
 if __name__ == "__main__":

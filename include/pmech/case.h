@@ -238,6 +238,7 @@ typedef struct pm_case {
         char directory[PM_PATH_MAX]; /**< default "<stem>.out" */
         double interval;             /**< default end_time / 100 */
         double probe_interval;       /**< 0 = every step */
+        double checkpoint_interval;  /**< simulated seconds between checkpoints; 0 = at the end (and on a signal) only */
         char pictures[PM_NAME_MAX];  /**< field of a PNG picture per frame (pm_field_from_name), "" = none */
         double picture_range[2];     /**< fixed colour range of the pictures; NaN: one range over the run */
         int picture_width;           /**< picture width in pixels (default 800) */

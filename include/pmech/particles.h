@@ -104,6 +104,21 @@ size_t pm_particles_bytes_per_particle(size_t n_state);
  */
 int pm_particles_permute(pm_particles *p, const uint32_t *perm, double *scratch, int32_t *iscratch);
 
+/** One particle array as the field table describes it, for files that store every field. */
+typedef struct pm_particle_field {
+    const char *name; /**< the pm_particles member's name ("x", "F", "state", ...) */
+    void *data;       /**< its array: width entries per particle, cap particles */
+    size_t elem;      /**< bytes of one entry (8: double, 4: int32_t) */
+    size_t width;     /**< entries per particle (n_state for "state") */
+    int is_int;       /**< 1: int32_t entries, 0: double */
+} pm_particle_field;
+
+/** @brief Number of particle arrays (every field a particle has). */
+size_t pm_particles_field_count(void);
+
+/** @brief Describe array @p k (0 <= k < pm_particles_field_count()) of @p p into @p f. */
+void pm_particles_field_get(const pm_particles *p, size_t k, pm_particle_field *f);
+
 #ifdef __cplusplus
 }
 #endif

@@ -127,6 +127,9 @@ typedef struct pm_run_opts {
     /** if not NULL: a signal number (SIGINT, SIGTERM) stored here, e.g. by a signal handler, stops the run
      *  after the step in progress with PM_EINTR; outputs are closed and run.json says so */
     const volatile sig_atomic_t *interrupt;
+    /** if not NULL: continue the run whose checkpoint.h5 is in this directory (outputs go there too; the
+     *  frames and logs after the checkpoint's time are replaced); see docs/checkpoint.md */
+    const char *restart;
 } pm_run_opts;
 
 /**

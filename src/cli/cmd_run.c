@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RUN_USAGE "pmech run CASE.json [-o DIR] [--overwrite] [--quiet] [--verbose] [--threads N]\n"
+#define RUN_USAGE "pmech run CASE.json [-o DIR] [--overwrite] [--restart DIR] [--quiet] [--verbose] [--threads N]\n"
 
 void pm_cmd_run_usage(FILE *f)
 {
@@ -19,14 +19,18 @@ void pm_cmd_run_usage(FILE *f)
                "  -o, --output DIR  write results to DIR instead of the case's output.directory\n"
                "  --overwrite       replace the outputs of an earlier run in that directory (without it such a\n"
                "                    directory is refused and nothing in it is touched)\n"
+               "  --restart DIR     continue the run whose checkpoint.h5 is in DIR (written at the end, on Ctrl-C or\n"
+               "                    SIGTERM, and every output.checkpoint_interval): the results after its time are\n"
+               "                    the same bytes as a run never stopped, with the same --threads (docs/checkpoint.md)\n"
                "  -q, --quiet       no progress line\n"
                "  -v, --verbose     implicit runs: print every Newton iteration instead of the progress line\n"
                "  --threads N       OpenMP threads (default: OMP_NUM_THREADS if set, else all cores, but one\n"
                "                    for runs of fewer than 5,000 particles)\n"
                "  -h, --help        this text\n"
                "  Outputs: particles.pvd (open in ParaView) with one particles_NNNNNN.vtu per frame, grid.vtu,\n"
-               "  probes.csv, energy.csv, run.json; implicit runs add newton.log and reactions.csv; a case with\n"
-               "  analysis.strength_reduction writes strength_reduction.csv and one srf_<F>/ per trial.\n");
+               "  probes.csv, energy.csv, run.json, checkpoint.h5 (what --restart continues from); implicit runs\n"
+               "  add newton.log and reactions.csv; a case with analysis.strength_reduction writes\n"
+               "  strength_reduction.csv and one srf_<F>/ per trial.\n");
 }
 
 static int bad_usage(const char *what)
@@ -83,6 +87,12 @@ int pm_cmd_run(int argc, char **argv)
             if (!argv[i][0])
                 return bad_usage("-o \"\": the output directory is empty (give a directory, e.g. -o .)");
             o.out_dir = argv[i];
+        } else if (!strcmp(argv[i], "--restart")) {
+            if (++i >= argc)
+                return bad_usage("--restart needs the directory of the run to continue");
+            if (!argv[i][0])
+                return bad_usage("--restart \"\": the directory is empty (give the run's output directory)");
+            o.restart = argv[i];
         } else if (!strcmp(argv[i], "--overwrite")) {
             overwrite = 1;
         } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
@@ -109,6 +119,10 @@ int pm_cmd_run(int argc, char **argv)
     }
     if (!case_file)
         return bad_usage("no case file given");
+    if (o.restart && o.out_dir && strcmp(o.restart, o.out_dir))
+        return bad_usage("--restart DIR continues the run in DIR: -o cannot name another directory");
+    if (o.restart && overwrite)
+        return bad_usage("--restart keeps the run's outputs up to its checkpoint: --overwrite contradicts it");
     pm_case c;
     int rc = pm_case_load(case_file, &c);
     if (rc) {
@@ -116,22 +130,32 @@ int pm_cmd_run(int argc, char **argv)
         pm_case_free(&c);
         return pm_exit_code(rc);
     }
-    const char *dir = o.out_dir ? o.out_dir : c.output.directory;
+    const char *dir = o.restart ? o.restart : o.out_dir ? o.out_dir : c.output.directory;
     int lock_fd = -1;
-    rc = pm_cli_claim_output(dir, overwrite, &lock_fd);
+    /* a restart continues the outputs found there */
+    rc = pm_cli_claim_output(dir, overwrite || o.restart, &lock_fd);
     if (rc) {
         fprintf(stderr, "pmech: %s\n", pm_error_message());
         pm_case_free(&c);
         return pm_exit_code(rc);
     }
     o.interrupt = pm_cli_signals_install();
+    if (c.analysis.strength_reduction.enabled && o.restart) {
+        fprintf(stderr, "pmech: --restart: a strength reduction is a search of many runs; it cannot be continued "
+                        "from a checkpoint (run it again)\n");
+        pm_cli_release_output(lock_fd);
+        pm_case_free(&c);
+        return 2;
+    }
     if (c.analysis.strength_reduction.enabled) {
         rc = run_strength_reduction(&c, &o, dir);
         pm_cli_release_output(lock_fd);
         pm_case_free(&c);
         return rc == PM_EINTR ? 128 + (int)*o.interrupt : pm_exit_code(rc);
     }
+    pm_cli_signals_prepare(dir, case_file);
     rc = pm_run(&c, &o, NULL);
+    pm_cli_signals_finished();
     pm_cli_release_output(lock_fd);
     if (rc) {
         fprintf(stderr, "pmech: %s\n", pm_error_message());

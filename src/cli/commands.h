@@ -40,6 +40,15 @@ int pm_cli_claim_output(const char *dir, int overwrite, int *lock_fd);
  */
 const volatile sig_atomic_t *pm_cli_signals_install(void);
 
+/**
+ * Prepare the short run.json a second SIGINT or SIGTERM writes into @p dir before it ends the process
+ * (exit status, which signal, case file), since the run cannot write its own then.
+ */
+void pm_cli_signals_prepare(const char *dir, const char *case_file);
+
+/** The run wrote its own run.json: a second signal from now on only ends the process. */
+void pm_cli_signals_finished(void);
+
 /** Release the lock pm_cli_claim_output took (-1: nothing to release). */
 void pm_cli_release_output(int lock_fd);
 

@@ -33,6 +33,8 @@ void pm_contact_destroy(pm_contact *ct)
     free(ct->node);
     free(ct->points);
     free(ct->slot);
+    free(ct->held);
+    free(ct->held_next);
     free(ct);
 }
 
@@ -266,6 +268,8 @@ int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_con
     /* a node or particle this close to a surface may take part: two cells cover the widest support of
      * the grid kinds (linear 1, uGIMP 1 + half a particle, B-spline 1.5 cells) */
     ct->reach = 2.0 * frame->h_min;
+    const double wave = wave_speed(c);
+    ct->penalty = (wave / frame->h_min) * (wave / frame->h_min);
     int rc = c->method == PM_METHOD_MPM ? node_set_surfaces(ct, c, g) : wall_surfaces(ct, c, frame);
     if (!rc)
         rc = obstacle_surfaces(ct, c, frame);
@@ -275,22 +279,6 @@ int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_con
     }
     pm_contact_detect(ct, g, 0.0);
     *out = ct;
-    return PM_OK;
-}
-
-int pm_contact_implicit(const pm_contact *ct, const pm_case *c, struct pm_implicit_ws *w, int want_K)
-{
-    (void)w;
-    (void)want_K;
-    for (size_t k = 0; ct && k < ct->n_surfaces; k++) {
-        const pm_contact_surface *sf = &ct->surface[k];
-        if (sf->guard)
-            continue; /* the fixed condition itself holds the side in implicit steps */
-        return pm_error_set(PM_EINPUT,
-                            "%s: boundary_conditions[%ld].type: 'friction' needs analysis.type 'explicit' "
-                            "(implicit contact is not available in this version); use 'fixed' or 'velocity'",
-                            c ? c->file : "", sf->bc);
-    }
     return PM_OK;
 }
 

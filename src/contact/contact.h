@@ -32,10 +32,23 @@
  *                       predictor): at entries in touch (gap <= 0) of nodal-law surfaces, the
  *                       approaching normal velocity only, no friction impulse (that one has been
  *                       applied to the end-of-step velocity), then the prescribed components.
- *   pm_contact_implicit implicit and quasi-static steps: contact terms of the residual and tangent.
- *                       Not yet: it refuses a friction condition with the message of the run's own
- *                       check (obstacles are refused when the case is loaded), and adds nothing for
- *                       the guard walls (the fixed condition holds them).
+ *   pm_contact_implicit_begin
+ *                       implicit and quasi-static steps, at the start of every attempt: detection at
+ *                       the step's start time, the gaps from the material's surface, and each
+ *                       obstacle's displacement over the step (implicit_terms.c).
+ *   pm_contact_implicit every residual evaluation of the attempt: the penalty terms of the residual and
+ *                       tangent at every contact node with unknowns (whatever the surface's law: a
+ *                       Newton solve needs forces that are functions of the displacement), built on
+ *                       the node's force of the last step: normal, its normal force plus stiffness x
+ *                       the step's approach (past the gap when it was apart); tangential, Coulomb
+ *                       regularised by a tangential penalty of the same stiffness, returned to mu N
+ *                       when larger (stick/slip return map); the tangent is the consistent one
+ *                       (unsymmetric while slipping). Guard walls add nothing (the fixed condition
+ *                       holds them).
+ *   pm_contact_implicit_accept
+ *                       after a converged attempt: every node's force is kept for the next step (a
+ *                       body at rest on a surface neither sinks nor creeps), the surfaces' resultants
+ *                       and impulses are those of the converged state.
  *
  * The nodal arrays a law works on are passed in (pm_contact_field), not taken from the simulation:
  * today that is the one field of pm_sim::nd, and a multi-body run will call the same functions once
@@ -43,7 +56,9 @@
  * common normal of their mass gradients).
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
- * alone, so a checkpoint needs nothing from here beyond the case and t.
+ * alone, so an explicit checkpoint needs nothing from here beyond the case and t. Implicit runs keep
+ * one more thing across steps: the force of every node touching a surface (held), which checkpoints
+ * store (pm_contact_implicit_history).
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -125,6 +140,7 @@ typedef struct pm_contact_surface {
                                   penetration */
     pm_contact_force f;      /**< over the last apply */
     pm_contact_force impulse;/**< the same terms times dt, summed over the applies since a reader reset it */
+    double step[PM_DIM];     /**< implicit steps: the obstacle's displacement over the step being solved */
 } pm_contact_surface;
 
 /** A node touching a surface. */
@@ -149,6 +165,12 @@ typedef struct pm_contact {
     double *points;
     int32_t *slot;           /**< n_nodes: -1, or during the gap pass the node's entry for one surface */
     double reach;            /**< nodes and particles within this distance of a surface are considered */
+    double penalty;          /**< implicit steps: penalty stiffness per node mass of the surfaces that have
+                                  none of their own (friction conditions): (c / h)^2 */
+    int surface_gaps;        /**< 1: every gap from the material's surface, whatever the law (implicit) */
+    double *held;            /**< implicit steps: each node's force on the material at the last accepted
+                                  step, PM_DIM per (surface, node) */
+    double *held_next;       /**< the same, being written by pm_contact_implicit_accept() */
 } pm_contact;
 
 /** The nodal arrays one application works on (one body's field). */
@@ -232,11 +254,34 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
 void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f);
 
 /**
- * Implicit steps: contact terms of the residual and tangent of @p w. Not yet: PM_EINPUT with the
- * run's refusal message when a surface comes from a friction condition; PM_OK (nothing added) when
- * there is none.
+ * Implicit steps, at the start of every attempt from @p t0 to @p t1: the contact nodes at t0 (nodes of
+ * @p g), their gaps from the material's surface (particles @p p connected in @p a), and each
+ * obstacle's displacement over the step. The first call allocates the nodal force history.
+ * @return PM_OK, PM_ENOMEM
  */
-int pm_contact_implicit(const pm_contact *ct, const pm_case *c, struct pm_implicit_ws *w, int want_K);
+int pm_contact_implicit_begin(pm_contact *ct, const pm_grid *g, const pm_approx *a, const pm_particles *p,
+                              double t0, double t1);
+
+/**
+ * The nodal force history of implicit steps (pm_contact::held), allocated on the first call: @p rows
+ * rows of PM_DIM, one per (surface, node). For checkpoints. @return PM_OK, PM_ENOMEM
+ */
+int pm_contact_implicit_history(pm_contact *ct, double **held, size_t *rows);
+
+/**
+ * Implicit steps: add the penalty contact terms at the increments w->du to the internal force
+ * (w->fint, w->fscale) and, when @p want_K, to the tangent w->K, at every contact node whose nodal
+ * mass (@p mass) exceeds @p mass_floor. NULL @p ct adds nothing.
+ */
+void pm_contact_implicit(const pm_contact *ct, const double *mass, double mass_floor, struct pm_implicit_ws *w,
+                         int want_K);
+
+/**
+ * Implicit steps, after a converged attempt of length @p dt: keep every node's force for the next
+ * step; each surface's resultant (pm_contact_force_of) and impulse are the converged ones.
+ */
+void pm_contact_implicit_accept(pm_contact *ct, const double *mass, double mass_floor,
+                                const struct pm_implicit_ws *w, double dt);
 
 /** Surfaces (boundaries and obstacles) of @p ct (0 for NULL). */
 size_t pm_contact_n_surfaces(const pm_contact *ct);

@@ -86,7 +86,7 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
             continue;
         /* the penalty law pushes on the particles' centres: its force grows from the first step on,
          * and a body seeded against the obstacle starts with no energy stored in it */
-        const double gap = sf->law == PM_CONTACT_LAW_PENALTY_COULOMB ? sd : sd - half_size(p, i);
+        const double gap = sf->law == PM_CONTACT_LAW_PENALTY_COULOMB && !ct->surface_gaps ? sd : sd - half_size(p, i);
         /* the particle moves mostly with its nearest contact nodes: it sets their gap only, so that a
          * node is not held by material at the far edge of its support (ahead of a rolling contact) */
         double wmax = 0.0;

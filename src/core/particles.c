@@ -11,12 +11,13 @@
  * is one row (and packing particles for distributed runs will walk it too).
  */
 typedef struct field_row {
+    const char *name;  /* as files that store every field call it (checkpoints) */
     size_t offset;     /* of the array pointer inside pm_particles */
     size_t elem;       /* bytes of one entry */
     size_t width;      /* entries per particle; 0: n_state */
 } field_row;
 
-#define FIELD(member, type, w) { offsetof(pm_particles, member), sizeof(type), (w) }
+#define FIELD(member, type, w) { #member, offsetof(pm_particles, member), sizeof(type), (w) }
 static const field_row fields[] = {
     FIELD(x, double, PM_DIM),      FIELD(x0, double, PM_DIM),   FIELD(v, double, PM_DIM),
     FIELD(a, double, PM_DIM),      FIELD(mass, double, 1),      FIELD(vol, double, 1),
@@ -36,6 +37,20 @@ static void **field_ptr(pm_particles *p, size_t k)
 static size_t field_width(const pm_particles *p, size_t k)
 {
     return fields[k].width ? fields[k].width : p->n_state;
+}
+
+size_t pm_particles_field_count(void)
+{
+    return N_FIELDS;
+}
+
+void pm_particles_field_get(const pm_particles *p, size_t k, pm_particle_field *f)
+{
+    f->name = fields[k].name;
+    f->data = *(void *const *)((const char *)p + fields[k].offset);
+    f->elem = fields[k].elem;
+    f->width = field_width(p, k);
+    f->is_int = fields[k].elem == sizeof(int32_t);
 }
 
 size_t pm_particles_bytes_per_particle(size_t n_state)

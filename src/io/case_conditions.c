@@ -38,12 +38,6 @@ int pm_case_parse_bcs(pm_case *c, json_t *bcs)
         int t;
         pm_check(jr_enum(&cx, b, "type", JR_REQUIRED, bc_types, 0, &t));
         bc->type = (pm_bc_type)t;
-        /* the implicit tangent has no contact terms, so Newton could not hold a friction condition */
-        if (bc->type == PM_BC_FRICTION && c->analysis.type != PM_ANALYSIS_EXPLICIT)
-            return pm_error_set(PM_EINPUT,
-                                "%s: %s.type: 'friction' needs analysis.type 'explicit' (implicit contact is not "
-                                "available in this version); use 'fixed' or 'velocity'",
-                                c->file, path);
         json_t *bd = json_object_get(b, "boundary");
         jr_join(bp, sizeof bp, path, "boundary");
         bc->line_axis = -1;
@@ -235,6 +229,8 @@ int pm_case_parse_output(pm_case *c, json_t *o)
     pm_check(jr_range(&cx, "interval", c->output.interval, 0, 1, INFINITY, 0));
     pm_check(jr_number(&cx, o, "probe_interval", 0, 0, &c->output.probe_interval));
     pm_check(jr_range(&cx, "probe_interval", c->output.probe_interval, 0, 0, INFINITY, 0));
+    pm_check(jr_number(&cx, o, "checkpoint_interval", 0, 0, &c->output.checkpoint_interval));
+    pm_check(jr_range(&cx, "checkpoint_interval", c->output.checkpoint_interval, 0, 0, INFINITY, 0));
     json_t *pic = json_object_get(o, "pictures");
     if (pic && !json_is_false(pic)) {
         int f;

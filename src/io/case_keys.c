@@ -30,7 +30,7 @@ static const char *const bc_friction[] = {"type", "boundary", "coefficient", NUL
 static const char *const line_keys[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const probe_keys[] = {"name", "quantity", "point", "body", NULL};
 static const char *const output_keys[] = {"directory", "interval", "probe_interval", "pictures", "picture_range",
-                                          "picture_width", NULL};
+                                          "picture_width", "checkpoint_interval", NULL};
 static const char *const source_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
                                           "initial_stress", "k0", "surface_y", "times", "start", "period",
                                           "until", "only_when_free", "contact_group", NULL};

@@ -235,9 +235,6 @@ int pm_case_parse_obstacles(pm_case *c, json_t *obs)
         c->n_obstacles = i + 1; /* so that pm_case_free() frees what this one owns */
         pm_check(parse_one(c, i, json_array_get(obs, i)));
     }
-    if (n && c->analysis.type != PM_ANALYSIS_EXPLICIT)
-        return pm_error_set(PM_EINPUT, "%s: obstacles: need analysis.type 'explicit' (implicit contact with "
-                            "obstacles is not available in this version)", c->file);
     return PM_OK;
 }
 

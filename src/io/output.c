@@ -2,6 +2,7 @@
  * energy.csv and run.json. VTU/PVD/JSON files are replaced atomically; the CSV files only ever
  * receive whole lines, so a run that stops at any point leaves valid files behind. */
 #include "io/output.h"
+#include "io/output_internal.h"
 #include "pmech/error.h"
 #include "io/run_pictures.h"
 #include "io/vtu_write.h"
@@ -16,47 +17,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-#define OUT_PATH_MAX (PM_PATH_MAX + 64)
-#define CSV_BUF 65536
-
-/* An append-only CSV file fed whole lines; bytes reach the file only in whole lines. */
-typedef struct csv_out {
-    int fd;                 /* -1 when not open */
-    char *buf;              /* complete lines not yet written */
-    size_t len;
-    char *line;             /* the line being built */
-    size_t line_len, line_cap;
-    int failed;             /* a write failed (reported once) */
-    char path[OUT_PATH_MAX];
-} csv_out;
-
-typedef struct probe {
-    char name[PM_NAME_MAX];
-    pm_quantity quantity;
-    int body;               /* -1: point probe */
-    long particle0;         /* followed particle at t = 0 */
-    long particle;          /* its index now (particles may be reordered; -1: a sink removed it) */
-    int32_t id;             /* its identity (pm_particles::id), which survives reordering */
-    int gone;               /* a sink removed it: its series has ended */
-    double init_pos[2];     /* position (body: centre of mass) at t = 0 */
-} probe;
-
-struct pm_output {
-    char dir[OUT_PATH_MAX];
-    double *scratch;        /* 3 doubles per particle for the VTU blocks */
-    size_t scratch_n;
-    double *frame_t;        /* time of each frame written */
-    size_t n_frames, cap_frames;
-    csv_out probes_csv, energy_csv;
-    probe *pr;
-    size_t n_probes;
-    char (*body_names)[PM_NAME_MAX];
-    double probe_interval, last_probe_t;
-    int probe_recorded;
-    pm_run_pictures *pics;  /* output.pictures: a PNG per frame */
-    double last_energy_t;   /* time of the last energy.csv row (NaN before the first) */
-};
 
 static const char *const quantity_names[] = { "position", "displacement", "velocity", "stress",
                                               "plastic_strain" };
@@ -414,8 +374,8 @@ static int open_csvs(pm_output *o)
     return rc;
 }
 
-int pm_output_open(pm_output **out, const char *dir, const pm_case *c, const pm_grid *g,
-                   const pm_particles *p)
+static int output_open(pm_output **out, const char *dir, const pm_case *c, const pm_grid *g,
+                       const pm_particles *p, int resume)
 {
     *out = NULL;
     if (!dir || !dir[0])
@@ -434,7 +394,7 @@ int pm_output_open(pm_output **out, const char *dir, const pm_case *c, const pm_
         rc = resolve_probes(o, c, p);
     if (!rc)
         rc = pm_mkdir_p(o->dir);
-    if (!rc)
+    if (!rc && !resume)
         rc = remove_stale(o->dir, o->n_probes > 0);
     if (!rc && g) {
         char path[OUT_PATH_MAX];
@@ -454,6 +414,24 @@ int pm_output_open(pm_output **out, const char *dir, const pm_case *c, const pm_
     }
     *out = o;
     return PM_OK;
+}
+
+int pm_output_open(pm_output **out, const char *dir, const pm_case *c, const pm_grid *g,
+                   const pm_particles *p)
+{
+    return output_open(out, dir, c, g, p, 0);
+}
+
+int pm_output_open_resume(pm_output **out, const char *dir, const pm_case *c, const pm_grid *g,
+                          const pm_particles *p)
+{
+    return output_open(out, dir, c, g, p, 1);
+}
+
+int pm_output_flush(pm_output *o)
+{
+    const int r1 = csv_flush(&o->probes_csv), r2 = csv_flush(&o->energy_csv);
+    return r1 ? r1 : r2;
 }
 
 int pm_output_frame(pm_output *o, double t, const pm_particles *p)

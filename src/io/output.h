@@ -58,6 +58,14 @@ typedef struct pm_run_summary {
 int pm_output_open(pm_output **o, const char *dir, const pm_case *c, const pm_grid *g,
                    const pm_particles *p);
 
+/**
+ * @brief As pm_output_open(), for a run that continues from a checkpoint in @p dir: the frames and logs
+ *        already there are kept (the checkpoint then puts back the frame list, the probes and the CSV
+ *        files as they were when it was written).
+ */
+int pm_output_open_resume(pm_output **o, const char *dir, const pm_case *c, const pm_grid *g,
+                          const pm_particles *p);
+
 /** @brief Write particles_NNNNNN.vtu for time @p t and rewrite particles.pvd listing all frames. */
 int pm_output_frame(pm_output *o, double t, const pm_particles *p);
 

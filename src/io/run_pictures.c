@@ -129,3 +129,32 @@ int pm_run_pictures_close(pm_run_pictures *rp)
     free(rp);
     return rc;
 }
+
+size_t pm_run_pictures_state(const pm_run_pictures *rp, double range[2], const double (**used)[2])
+{
+    if (!rp)
+        return 0;
+    range[0] = rp->range[0];
+    range[1] = rp->range[1];
+    *used = (const double(*)[2])rp->used;
+    return rp->n_used;
+}
+
+int pm_run_pictures_restore(pm_run_pictures *rp, const double range[2], const double (*used)[2], size_t n)
+{
+    if (!rp)
+        return PM_OK;
+    if (n > rp->cap) {
+        double(*u)[2] = realloc(rp->used, n * sizeof *u);
+        if (!u)
+            return pm_error_set(PM_ENOMEM, "out of memory for the ranges of %zu pictures", n);
+        rp->used = u;
+        rp->cap = n;
+    }
+    if (n)
+        memcpy(rp->used, used, n * sizeof *used);
+    rp->n_used = n;
+    rp->range[0] = range[0];
+    rp->range[1] = range[1];
+    return PM_OK;
+}

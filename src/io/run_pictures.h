@@ -40,4 +40,18 @@ int pm_run_pictures_frame(pm_run_pictures *rp, size_t frame, double t, const pm_
  */
 int pm_run_pictures_close(pm_run_pictures *rp);
 
+/**
+ * @brief The colour range so far and the range each picture was drawn with (a checkpoint keeps them).
+ * @param used receives the per-picture ranges (owned by @p rp)
+ * @return the number of pictures drawn; 0 for NULL @p rp
+ */
+size_t pm_run_pictures_state(const pm_run_pictures *rp, double range[2], const double (**used)[2]);
+
+/**
+ * @brief Put back what pm_run_pictures_state() gave (a run continued from a checkpoint). NULL @p rp:
+ *        nothing.
+ * @return PM_OK, PM_ENOMEM
+ */
+int pm_run_pictures_restore(pm_run_pictures *rp, const double range[2], const double (*used)[2], size_t n);
+
 #endif

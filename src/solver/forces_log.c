@@ -30,7 +30,7 @@ int pm_forces_log_open(pm_forces_log *log, const pm_sim *s, const char *dir)
     size_t n = 0;
     for (size_t k = 0; ct && k < ct->n_surfaces; k++)
         n += reported(&ct->surface[k]);
-    if (!n || s->c->analysis.type != PM_ANALYSIS_EXPLICIT)
+    if (!n)
         return PM_OK;
     snprintf(log->csv, sizeof log->csv, "%s/forces.csv", dir);
     snprintf(log->png, sizeof log->png, "%s/forces.png", dir);

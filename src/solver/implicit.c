@@ -10,6 +10,8 @@
 #include "implicit_internal.h"
 #include "meshfree_internal.h"
 
+#include "contact/contact.h"
+
 #include "pmech/error.h"
 #include "pmech/grid.h"
 #include "io/progress.h"
@@ -144,6 +146,7 @@ static int attempt(pm_sim *s, pm_implicit_ws *w, FILE *log, pm_implicit_report *
     int rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc)
         return pm_error_prefix(rc, "step %ld (t = %.6g s): ", s->step + 1, s->t);
+    pm_check(pm_contact_implicit_begin(s->contact, &s->grid, s->approx, &s->p, s->t, s->t + w->dt));
     pm_check(pm_implicit_setup_step(s, w));
     rep->dofs = w->n_dof;
     if (pm_implicit_evaluate(s, w, 1)) {
@@ -315,6 +318,7 @@ int pm_implicit_step(pm_sim *s, double dt, FILE *log, pm_implicit_report *rep)
             h *= 0.5;
             continue;
         }
+        pm_contact_implicit_accept(s->contact, s->nd.mass, pm_implicit_mass_floor(s), w, h);
         const int crc = convect(s, w);
         s->t += h;
         if (crc)

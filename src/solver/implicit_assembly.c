@@ -7,6 +7,8 @@
 #include "implicit_internal.h"
 #include "meshfree_internal.h"
 
+#include "contact/contact.h"
+
 #include "pmech/error.h"
 
 #include <math.h>
@@ -41,6 +43,11 @@
 static void *grow(void *ptr, size_t count, size_t size)
 {
     return realloc(ptr, (count ? count : 1) * size);
+}
+
+double pm_implicit_mass_floor(const pm_sim *s)
+{
+    return s->p.n ? 1e-12 * s->p.mass[0] : 0.0;
 }
 
 int pm_implicit_ws_alloc(pm_sim *s)
@@ -195,7 +202,7 @@ static void project(pm_sim *s, pm_implicit_ws *w)
             w->fext[2 * I + 1] += mN * g[1];
         }
     }
-    const double floor = w->n ? 1e-12 * p->mass[0] : 0;
+    const double floor = pm_implicit_mass_floor(s);
     for (size_t I = 0; I < nn; I++) {
         const int on = mass[I] > floor;
         for (int c = 0; c < 2; c++) {
@@ -222,7 +229,7 @@ static void project(pm_sim *s, pm_implicit_ws *w)
 /* Unknowns: the free components of nodes that carry material, numbered node by node. */
 static void number_dofs(pm_sim *s, pm_implicit_ws *w)
 {
-    const double floor = w->n ? 1e-12 * s->p.mass[0] : 0;
+    const double floor = pm_implicit_mass_floor(s);
     int nd = 0;
     for (size_t I = 0; I < w->nn; I++)
         for (int c = 0; c < 2; c++) {
@@ -492,6 +499,7 @@ int pm_implicit_evaluate(pm_sim *s, pm_implicit_ws *w, int want_K)
         add_point(w, w->st_node + w->st_off[i], &c, want_K);
     }
     weak_springs(s, w, want_K);
+    pm_contact_implicit(s->contact, s->nd.mass, pm_implicit_mass_floor(s), w, want_K);
     const double *mass = s->nd.mass, dt = w->dt;
     const double c0 = w->quasi_static ? 0.0 : 4.0 / (dt * dt);
     const double kappa = w->quasi_static ? PM_QS_SPRING : 0.0;

@@ -58,6 +58,9 @@ typedef struct pm_point_contrib {
     double D[16];                     /* tangent on (xx, yy, zz, xy), engineering shear */
 } pm_point_contrib;
 
+/* A node carries material, and has unknowns, when its mass exceeds this. */
+double pm_implicit_mass_floor(const pm_sim *s);
+
 /* Allocate the workspace for s (first step). */
 int pm_implicit_ws_alloc(pm_sim *s);
 

@@ -9,6 +9,7 @@
 #include "contact/multibody.h"
 #include "pmech/error.h"
 #include "solver/implicit.h"
+#include "io/checkpoint.h"
 #include "io/output.h"
 #include "io/progress.h"
 
@@ -143,6 +144,54 @@ static double max_displacement(const pm_particles *p)
     return sqrt(m2);
 }
 
+/* The next time of a cadence after time t: computed, not stepped, since adding an interval below the
+ * spacing of doubles near t would leave it where it is for ever. */
+static double next_time(double next, double t, double interval, double eps)
+{
+    next = fmax(next, interval * (floor((t + eps) / interval) + 1));
+    if (next <= t + eps)
+        next = t + interval > t ? t + interval : nextafter(t, INFINITY);
+    return next;
+}
+
+static int write_checkpoint(pm_ck_run *r, const char *dir, const implicit_files *imf)
+{
+    if (!r->enabled)
+        return PM_OK;
+    if (pm_checkpoint_covers(r->s) != PM_OK) {
+        pm_error_clear(); /* such runs write no checkpoint; --restart says why */
+        return PM_OK;
+    }
+    pm_run_loop *loop = (pm_run_loop *)r->loop;
+    loop->newton_iterations = imf->total.iterations;
+    loop->step_cuts = imf->total.step_cuts;
+    loop->assemble_seconds = imf->total.assemble_seconds;
+    loop->solve_seconds = imf->total.solve_seconds;
+    return pm_checkpoint_write(dir, r);
+}
+
+/* The case's identity for its checkpoints and, with --restart, the state they hold put back. */
+static int run_resume_begin(const pm_run_opts *o, pm_sim *s, pm_checkpoint **ck, pm_run_loop *loop,
+                            pm_ck_run *ckr)
+{
+    if (!o->restart) {
+        /* a case built in memory has no file to identify it by: such runs write no checkpoint */
+        ckr->enabled = pm_checkpoint_case_hash(s->c->file, &ckr->case_hash) == PM_OK;
+        pm_error_clear();
+        return PM_OK;
+    }
+    pm_check(pm_checkpoint_case_hash(s->c->file, &ckr->case_hash));
+    ckr->enabled = 1;
+    pm_check(pm_checkpoint_open(ck, o->restart, s));
+    char warning[PM_WARNING_LEN];
+    int rc = pm_checkpoint_restore_state(*ck, s, loop, s->nd.n_threads, warning, sizeof warning);
+    if (!rc && warning[0] && !o->quiet)
+        fprintf(stderr, "pmech: warning: %s\n", warning);
+    if (!rc)
+        rc = pm_checkpoint_logs_aside(*ck);
+    return rc;
+}
+
 int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
 {
     const double wall0 = pm_wall_seconds();
@@ -173,27 +222,37 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_run_warnings_begin(&warn, c, o->quiet);
     pm_output *out = NULL;
     int frame = 0;
-    const char *dir = o->out_dir ? o->out_dir : c->output.directory;
-    if (o->write_output) {
-        rc = pm_output_open(&out, dir, c, pm_sim_frame_grid(s), &s->p);
-        if (!rc)
-            rc = write_frame(out, s, dir, &frame);
-        if (!rc)
-            rc = pm_output_probes(out, 0.0, &s->p);
-        if (!rc)
-            rc = write_energy(out, s);
-        if (rc) {
-            pm_output_close(out, NULL);
-            pm_sim_destroy(s);
-            return rc;
-        }
-    }
+    const char *dir = o->restart ? o->restart : o->out_dir ? o->out_dir : c->output.directory;
     const double end = c->analysis.end_time, interval = c->output.interval;
-    const double eps = 1e-12 * end;
-    double next_frame = interval, next_energy = interval / 20, loop_seconds = 0;
-    double dt_min = INFINITY, dt_max = 0, last_frame_t = 0;
+    const double eps = 1e-12 * end, ck_every = c->output.checkpoint_interval;
+    pm_run_loop loop = {.next_frame = interval, .next_energy = interval / 20, .dt_min = INFINITY,
+                        .next_checkpoint = ck_every > 0 ? ck_every : INFINITY};
+    pm_checkpoint *ck = NULL;
+    pm_ck_run ckr = {.s = s, .loop = &loop, .threads = threads};
+    if (o->write_output)
+        rc = run_resume_begin(o, s, &ck, &loop, &ckr);
+    if (!rc && o->write_output) {
+        rc = ck ? pm_output_open_resume(&out, dir, c, pm_sim_frame_grid(s), &s->p)
+                : pm_output_open(&out, dir, c, pm_sim_frame_grid(s), &s->p);
+        if (!rc && !ck)
+            rc = write_frame(out, s, dir, &frame);
+        if (!rc && !ck)
+            rc = pm_output_probes(out, 0.0, &s->p);
+        if (!rc && !ck)
+            rc = write_energy(out, s);
+    }
+    if (rc) {
+        pm_checkpoint_close(ck);
+        pm_output_close(out, NULL);
+        pm_sim_destroy(s);
+        return rc;
+    }
     implicit_files imf;
     rc = open_implicit_files(&imf, c, o->write_output ? dir : NULL, o->verbose);
+    imf.total.iterations = loop.newton_iterations;
+    imf.total.step_cuts = loop.step_cuts;
+    imf.total.assemble_seconds = loop.assemble_seconds;
+    imf.total.solve_seconds = loop.solve_seconds;
     pm_flow_log flog = {0};
     if (!rc && out)
         rc = pm_flow_log_open(&flog, s, dir);
@@ -202,7 +261,20 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         rc = pm_forces_log_open(&forces, s, dir);
     if (!rc && out && s->mb)
         rc = pm_multibody_log_open(s->mb, c, dir);
-    double particle_steps = 0; /* the count changes with sources and sinks */
+    pm_ck_logs logs = {0};
+    pm_ck_logs_add(&logs, "newton.log", &imf.log);
+    pm_ck_logs_add(&logs, "reactions.csv", &imf.reactions);
+    pm_ck_logs_add(&logs, "releases.csv", &flog.releases);
+    pm_ck_logs_add(&logs, "removals.csv", &flog.removals);
+    pm_ck_logs_add(&logs, "forces.csv", &forces.f);
+    if (s->mb)
+        pm_ck_logs_add(&logs, "contact_forces.csv", &s->mb->log);
+    ckr.out = out;
+    ckr.forces = &forces;
+    ckr.logs = &logs;
+    if (!rc && ck)
+        rc = pm_checkpoint_restore_outputs(ck, s, out, &forces, &logs);
+    pm_checkpoint_close(ck);
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
     while (!rc && s->t < end - eps) {
@@ -219,52 +291,58 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         const double n_before = (double)s->p.n;
         rc = c->analysis.type == PM_ANALYSIS_EXPLICIT ? pm_explicit_step(s, dt) : implicit_step(s, dt, &imf);
         const double w1 = pm_wall_seconds();
-        loop_seconds += w1 - w0;
+        loop.loop_seconds += w1 - w0;
         pm_thread_gov_after(&gov, w1 - w0);
         if (rc)
             break;
-        particle_steps += n_before;
+        loop.particle_steps += n_before; /* the count changes with sources and sinks */
         if (s->mb)
             pm_multibody_log_step(s->mb, dt);
         if (out && (rc = pm_flow_log_step(&flog, s)) != PM_OK)
             break;
         if (out && (rc = pm_forces_log_step(&forces, s, s->t >= end - eps)) != PM_OK)
             break;
-        dt_min = fmin(dt_min, dt);
-        dt_max = fmax(dt_max, dt);
+        loop.dt_min = fmin(loop.dt_min, dt);
+        loop.dt_max = fmax(loop.dt_max, dt);
         pm_run_warnings_step(&warn, s->step, s->t, dt);
         if (out) {
             rc = pm_output_probes(out, s->t, &s->p);
-            if (!rc && s->t >= next_energy - eps) {
+            if (!rc && s->t >= loop.next_energy - eps) {
                 rc = write_energy(out, s);
                 if (!rc && s->mb)
                     rc = pm_multibody_log_row(s->mb, c, s->t);
-                next_energy += interval / 20;
+                loop.next_energy += interval / 20;
             }
-            if (!rc && s->t >= next_frame - eps && s->t < end - eps) {
+            if (!rc && s->t >= loop.next_frame - eps && s->t < end - eps) {
                 rc = write_frame(out, s, dir, &frame);
-                last_frame_t = s->t;
-                /* computed, not stepped: adding an interval below the spacing of doubles near t would
-                 * leave next_frame where it is for ever */
-                next_frame = fmax(next_frame, interval * (floor((s->t + eps) / interval) + 1));
-                if (next_frame <= s->t + eps)
-                    next_frame = s->t + interval > s->t ? s->t + interval : nextafter(s->t, INFINITY);
+                loop.last_frame_t = s->t;
+                loop.next_frame = next_time(loop.next_frame, s->t, interval, eps);
+            }
+            if (!rc && s->t >= loop.next_checkpoint - eps && s->t < end - eps) {
+                loop.next_checkpoint = next_time(loop.next_checkpoint, s->t, ck_every, eps);
+                rc = write_checkpoint(&ckr, dir, &imf);
             }
             if (rc)
                 break;
         }
-        pm_progress_update(&pg, s->step, s->t, loop_seconds);
+        pm_progress_update(&pg, s->step, s->t, loop.loop_seconds);
         if (o->interrupt && *o->interrupt) {
+            /* the state after a whole step: what a restart continues from */
+            if (out && (rc = write_checkpoint(&ckr, dir, &imf)) != PM_OK)
+                break;
             rc = pm_error_set(PM_EINTR, "interrupted by %s after step %ld (t = %.6g s)", signal_name(*o->interrupt),
                               s->step, s->t);
             break;
         }
     }
-    if (!rc && out && last_frame_t < s->t) {
+    if (!rc && out && loop.last_frame_t < s->t) {
         rc = write_frame(out, s, dir, &frame);
+        /* read by the checkpoint below (through ckr.loop): a restart from it must not write this frame again */
+        // cppcheck-suppress unreadVariable
+        loop.last_frame_t = s->t;
         if (!rc)
             rc = write_energy(out, s);
-    } else if (rc == PM_ESIM && out && c->analysis.type != PM_ANALYSIS_EXPLICIT && last_frame_t < s->t) {
+    } else if (rc == PM_ESIM && out && c->analysis.type != PM_ANALYSIS_EXPLICIT && loop.last_frame_t < s->t) {
         /* A failed implicit step restores the start-of-step state, the last equilibrium found: worth a
          * frame, since it shows the mechanism that stopped the run. The error stays the run's result. */
         char msg[2048];
@@ -273,6 +351,8 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             write_energy(out, s);
         pm_error_set(rc, "%s", msg);
     }
+    if (!rc && out)
+        rc = write_checkpoint(&ckr, dir, &imf);
     if (o->stats) {
         pm_run_stats *st = o->stats;
         st->t = s->t;
@@ -282,7 +362,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         st->max_displacement = max_displacement(&s->p);
         st->wall_seconds = pm_wall_seconds() - wall0;
     }
-    pm_progress_end(&pg, s->step, s->t, loop_seconds);
+    pm_progress_end(&pg, s->step, s->t, loop.loop_seconds);
     close_implicit_files(&imf);
     int rc_log = pm_flow_log_close(&flog);
     if (!rc && rc_log)
@@ -302,12 +382,12 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .formulation = c->formulation == PM_AXISYMMETRIC ? "axisymmetric"
                        : c->formulation == PM_PLANE_STRESS ? "plane_stress" : "plane_strain",
         .steps = s->step,
-        .dt_min = isfinite(dt_min) ? dt_min : 0,
-        .dt_max = dt_max,
+        .dt_min = isfinite(loop.dt_min) ? loop.dt_min : 0,
+        .dt_max = loop.dt_max,
         .end_time = s->t,
         .wall_seconds = pm_wall_seconds() - wall0,
-        .loop_seconds = loop_seconds,
-        .particle_steps_per_second = loop_seconds > 0 ? particle_steps / loop_seconds : 0,
+        .loop_seconds = loop.loop_seconds,
+        .particle_steps_per_second = loop.loop_seconds > 0 ? loop.particle_steps / loop.loop_seconds : 0,
         .particles = s->p.n,
         .flow = s->flow != NULL,
         .particles_max = ft.max_n,

@@ -10,3 +10,7 @@ add_test(NAME cli.signals
          COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/signals_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
                  ${CMAKE_CURRENT_BINARY_DIR}/signals_work)
 set_tests_properties(cli.signals PROPERTIES LABELS cli TIMEOUT 300)
+add_test(NAME cli.restart
+         COMMAND sh ${CMAKE_CURRENT_LIST_DIR}/restart_test.sh $<TARGET_FILE:pmech_cli> ${CMAKE_SOURCE_DIR}
+                 ${CMAKE_CURRENT_BINARY_DIR}/restart_work)
+set_tests_properties(cli.restart PROPERTIES LABELS cli TIMEOUT 600)

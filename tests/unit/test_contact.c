@@ -1,5 +1,5 @@
 /* The contact module: the nodal Coulomb law of Bardenhagen et al. (2000) on one node, the force it
- * reports, the normal-only projection, the implicit refusal, and the surfaces and contact nodes a case
+ * reports, the normal-only projection, the implicit penalty law and its tangent, and the surfaces and contact nodes a case
  * sets up (MPM grid side and line, GMM walls). */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,11 +9,13 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "contact/contact.h"
 #include "pmech/error.h"
 #include "pmech/sim.h"
+#include "solver/implicit_internal.h"
 #include "solver/sim_internal.h"
 
 #define NEAR(a, b) assert_true(fabs((a) - (b)) <= 1e-12 * (1 + fabs(b)))
@@ -145,19 +147,126 @@ static void projection_is_normal_only(void **st)
     pm_contact_destroy(o.ct);
 }
 
-static void implicit_not_yet(void **st)
+/* One free node on the floor of one_node_init in an implicit workspace of two unknowns (a dense
+ * 2 x 2 pattern), stiffness 100 per node mass, the accepted held force told. */
+typedef struct one_implicit {
+    one_node o;
+    pm_implicit_ws w;
+    int32_t dof[PM_DIM];
+    double du[PM_DIM], fint[PM_DIM], fscale[PM_DIM];
+} one_implicit;
+
+static void one_implicit_init(one_implicit *q, double mu, double gap, double told_x)
+{
+    memset(q, 0, sizeof *q);
+    one_node_init(&q->o, mu, 0.0, 0.0);
+    q->o.ct->penalty = 100.0;
+    q->o.ct->node[0].gap = gap;
+    q->o.ct->held = calloc(PM_DIM, sizeof(double));
+    q->o.ct->held_next = calloc(PM_DIM, sizeof(double));
+    assert_non_null(q->o.ct->held);
+    assert_non_null(q->o.ct->held_next);
+    q->o.ct->held[0] = told_x;
+    q->dof[0] = 0, q->dof[1] = 1;
+    q->w.nn = 1;
+    q->w.dof = q->dof, q->w.du = q->du, q->w.fint = q->fint, q->w.fscale = q->fscale;
+    assert_int_equal(pm_csr_reserve(&q->w.K, 2, 4), PM_OK);
+    q->w.K.rowptr[0] = 0, q->w.K.rowptr[1] = 2, q->w.K.rowptr[2] = 4;
+    q->w.K.col[0] = 0, q->w.K.col[1] = 1, q->w.K.col[2] = 0, q->w.K.col[3] = 1;
+    q->w.K.nnz = 4;
+}
+
+static void one_implicit_eval(one_implicit *q, double dux, double duy)
+{
+    q->du[0] = dux, q->du[1] = duy;
+    memset(q->fint, 0, sizeof q->fint);
+    memset(q->w.K.val, 0, 4 * sizeof(double));
+    pm_contact_implicit(q->o.ct, &q->o.mass, 0.0, &q->w, 1);
+}
+
+static void one_implicit_free(one_implicit *q)
+{
+    pm_csr_free(&q->w.K);
+    pm_contact_destroy(q->o.ct);
+}
+
+/* The tangent against central differences of the internal force (consistent tangent). */
+static void tangent_is_consistent(one_implicit *q, double dux, double duy)
+{
+    one_implicit_eval(q, dux, duy);
+    double K[4];
+    memcpy(K, q->w.K.val, sizeof K);
+    const double h = 1e-7;
+    for (int j = 0; j < 2; j++) {
+        double fp[2], fm[2];
+        one_implicit_eval(q, dux + (j == 0) * h, duy + (j == 1) * h);
+        memcpy(fp, q->fint, sizeof fp);
+        one_implicit_eval(q, dux - (j == 0) * h, duy - (j == 1) * h);
+        memcpy(fm, q->fint, sizeof fm);
+        for (int i = 0; i < 2; i++) {
+            const double fd = (fp[i] - fm[i]) / (2 * h);
+            if (fabs(fd - K[2 * i + j]) > 1e-6 * (1 + fabs(K[2 * i + j])))
+                fail_msg("K[%d][%d] = %g, central difference %g", i, j, K[2 * i + j], fd);
+        }
+    }
+}
+
+static void implicit_penalty_normal_and_separation(void **st)
 {
     (void)st;
-    one_node o;
-    one_node_init(&o, 0.5, 0.0, 0.0);
-    assert_int_equal(pm_contact_implicit(o.ct, NULL, NULL, 1), PM_EINPUT);
-    assert_non_null(strstr(pm_error_message(), "implicit contact is not available"));
-    pm_contact_destroy(o.ct);
-    pm_contact *empty;
-    assert_int_equal(pm_contact_new(4, &empty), PM_OK);
-    assert_int_equal(pm_contact_implicit(empty, NULL, NULL, 1), PM_OK);
-    pm_contact_destroy(empty);
-    assert_int_equal(pm_contact_implicit(NULL, NULL, NULL, 1), PM_OK);
+    one_implicit q;
+    one_implicit_init(&q, 0.0, 0.01, 0.0); /* 1 cm above the floor, frictionless */
+    one_implicit_eval(&q, 0.3, -0.005);   /* still apart: no force, no stiffness */
+    assert_true(q.fint[0] == 0 && q.fint[1] == 0 && q.w.K.val[0] == 0 && q.w.K.val[3] == 0);
+    one_implicit_eval(&q, 0.3, -0.03);    /* 2 cm in: N = k m p = 100 * 2 * 0.02 upwards on the material */
+    NEAR(q.fint[1], -4.0);                /* the residual gains +4 N upwards: fint holds -f */
+    NEAR(q.fint[0], 0.0);                 /* frictionless: the slip costs nothing */
+    NEAR(q.w.K.val[3], 200.0);
+    NEAR(q.w.K.val[0], 0.0);
+    one_implicit_free(&q);
+}
+
+static void implicit_stick_slip_return_map(void **st)
+{
+    (void)st;
+    one_implicit q;
+    one_implicit_init(&q, 0.5, 0.0, 0.0);
+    /* 1 cm in (N = 2 N, limit 1 N), slid 1 mm: the trial force 0.2 N sticks */
+    one_implicit_eval(&q, 0.001, -0.01);
+    NEAR(q.fint[0], 0.2);
+    NEAR(q.w.K.val[0], 200.0);
+    tangent_is_consistent(&q, 0.001, -0.01);
+    /* slid 1 cm: the trial force 2 N is returned to mu N = 1 N against the slip */
+    one_implicit_eval(&q, 0.01, -0.01);
+    NEAR(q.fint[0], 1.0);
+    NEAR(q.fint[1], -2.0);
+    NEAR(q.w.K.val[0], 0.0);          /* slip: no held stiffness in 2-D ... */
+    NEAR(q.w.K.val[1], -0.5 * 200.0); /* ... but the friction grows with the penetration (du_y < 0) */
+    tangent_is_consistent(&q, 0.01, -0.01);
+    /* the accepted force is kept: a node that stuck at 0.8 N back sticks with no slip at all */
+    one_implicit_free(&q);
+    one_implicit_init(&q, 0.5, 0.0, -0.8);
+    one_implicit_eval(&q, 0.0, -0.01);
+    NEAR(q.fint[0], 0.8);
+    pm_contact_implicit_accept(q.o.ct, &q.o.mass, 0.0, &q.w, 0.5);
+    pm_contact_force f;
+    assert_int_equal(pm_contact_force_of(q.o.ct, 0, &f), PM_OK);
+    NEAR(f.normal, 2.0);
+    NEAR(f.force[0], -0.8);
+    NEAR(f.force[1], 2.0);
+    NEAR(q.o.ct->held[0], -0.8);
+    NEAR(q.o.ct->held[1], 2.0);
+    /* the kept force goes on, whatever the gap measured now: a resting node neither sinks nor lifts */
+    q.o.ct->node[0].gap = 0.5;
+    one_implicit_eval(&q, 0.0, 0.0);
+    NEAR(q.fint[1], -2.0);
+    NEAR(q.fint[0], 0.8);
+    one_implicit_eval(&q, 0.0, 0.004); /* lifting by N / (k m) = 1 cm releases it: 0.4 cm leaves 1.2 N */
+    NEAR(q.fint[1], -1.2);
+    one_implicit_eval(&q, 0.0, 0.011);
+    assert_true(q.fint[0] == 0.0 && q.fint[1] == 0.0);
+    NEAR(q.o.ct->surface[0].impulse.normal, 1.0);
+    one_implicit_free(&q);
 }
 
 /* A 4 x 2 quad grid over [0, 1] x [0, 0.5] with a block on its floor and the given conditions. */
@@ -220,9 +329,6 @@ static void mpm_friction_side_and_line(void **st)
     assert_int_equal(pm_contact_force_of(ct, 0, &f), PM_OK);
     assert_true(f.normal > 0.0);
     NEAR(f.force[1], f.normal);
-    /* implicit: the refusal of the run's own check, naming the condition */
-    assert_int_equal(pm_contact_implicit(ct, &c, NULL, 1), PM_EINPUT);
-    assert_non_null(strstr(pm_error_message(), "contact.json: boundary_conditions[0].type: 'friction'"));
     pm_sim_destroy(s);
     pm_case_free(&c);
 }
@@ -283,9 +389,6 @@ static void gmm_walls(void **st)
     }
     assert_int_equal(on_left, 2);
     assert_int_equal(on_floor, 4);
-    /* guard walls add no implicit terms; the friction wall is refused */
-    assert_int_equal(pm_contact_implicit(ct, &c, NULL, 1), PM_EINPUT);
-    assert_non_null(strstr(pm_error_message(), "boundary_conditions[1]"));
     pm_sim_destroy(s);
     pm_case_free(&c);
 }
@@ -408,7 +511,8 @@ int main(void)
         cmocka_unit_test(separating_and_massless_untouched),
         cmocka_unit_test(prescribed_components_win),
         cmocka_unit_test(projection_is_normal_only),
-        cmocka_unit_test(implicit_not_yet),
+        cmocka_unit_test(implicit_penalty_normal_and_separation),
+        cmocka_unit_test(implicit_stick_slip_return_map),
         cmocka_unit_test(mpm_friction_side_and_line),
         cmocka_unit_test(mpm_friction_needs_a_normal),
         cmocka_unit_test(gmm_walls),

@@ -701,9 +701,9 @@ static void atomic_write_and_mkdir(void **state)
     assert_int_equal(count_containing(d, "tmp"), 0);
 }
 
-/* Throughput of the frame writer: a million particles (informative; the limit is generous so
- * that sanitizer builds pass). */
-static void million_particle_frame_is_fast(void **state)
+/* A frame of a million particles is written whole. Its time is printed, not judged: a wall-clock
+ * bound fails on a loaded machine (speed is measured in bench/, docs/performance.md). */
+static void million_particle_frame_is_whole(void **state)
 {
     fixture *f = *state;
     pm_particles big;
@@ -721,8 +721,13 @@ static void million_particle_frame_is_fast(void **state)
     assert_int_equal(pm_output_frame(o, 1, &big), PM_OK);
     double w = pm_wall_seconds() - w0;
     print_message("one frame of %zu particles: %.3f s\n", n, w);
-    assert_true(w < 10.0);
     assert_int_equal(pm_output_close(o, NULL), PM_OK);
+    /* at least the positions, three doubles per particle, must be in the file */
+    char path[4096];
+    snprintf(path, sizeof path, "%s/particles_000001.vtu", f->out);
+    struct stat st;
+    assert_int_equal(stat(path, &st), 0);
+    assert_true((double)st.st_size >= 24.0 * (double)n);
     pm_particles_free(&big);
 }
 
@@ -740,7 +745,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(stale_files_of_an_earlier_run_are_removed, setup, teardown),
         cmocka_unit_test_setup_teardown(errors_name_the_path, setup, teardown),
         cmocka_unit_test_setup_teardown(atomic_write_and_mkdir, setup, teardown),
-        cmocka_unit_test_setup_teardown(million_particle_frame_is_fast, setup, teardown),
+        cmocka_unit_test_setup_teardown(million_particle_frame_is_whole, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

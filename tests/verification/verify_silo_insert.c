@@ -18,7 +18,7 @@
  *   by area) that sinks by more than a tenth of the axis's drop above 0.8.
  * Mass flow has the whole section sinking together (ratio near 1, share 1); funnel flow, the same silo
  * without the insert at the same resolution, gives ratios 0.05 (z = 2.0 m) and 0.07 (z = 2.5 m) and
- * shares 0.23 and 0.46 over the same window, and fails both. Measured here: ratios 0.96 and 0.89,
+ * shares 0.23 and 0.46 over the same window, and fails both. Measured here: ratios 1.01 and 0.90,
  * shares 1.00.
  * Reported: the discharge rate 0.25-0.8 s after the opening against Beverloo's 276 kg/s (C = 0.58,
  * D = 0.4 m, d = 0; see verify_silo_discharge), and the same class figures at z = 1.0 m, below the insert,

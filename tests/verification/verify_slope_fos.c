@@ -26,7 +26,12 @@
  *  1.341 at H/10, H/20, H/40 (examples/slope_fos, study.sh), so at H/40 it is 4.2 % below 1.4 and
  *  the trend points further down (part of it may be Newton's difficulty on the finer grid: F = 1.2
  *  already needs step cuts there). The H/20 row is judged as the answer of that mesh, which is what
- *  users run; H/40 takes 190 s, too long for this suite, and is expected to fail a 2 % check.
+ *  users run. H/40 is judged within the same 5 % by examples/slope_fos/study.sh (it exits 1 when
+ *  H/20 or H/40 is outside), not here: even the two trials that decide "within 5 %" at H/40, F = 1.33
+ *  must hold and F = 1.47 must fail, took 158 s of one core's CPU on the loaded machine (F = 1.33
+ *  holds after 196 Newton iterations and 5 step cuts; F = 1.47 fails at 78 % of gravity after 354
+ *  iterations and 8 cuts), beyond the suite's budget of a minute per test. Its margin is small (bracket 1.331-1.350
+ *  against the band's lower end 1.33): a finer mesh would likely fall out of the band.
  *  - RKPM (rk_cubic, one node per cell: node spacing H/10, 220 nodes): judged within 10 %, the
  *    over-estimate to be expected of a discretisation this coarse (MPM at the same spacing is 8 %
  *    high). It lands within 2 %; likely because one smoothed integration point per node constrains

@@ -1,0 +1,127 @@
+#!/bin/sh
+# Checkpoint and restart (docs/checkpoint.md): a run stopped by SIGINT or SIGTERM mid-run, or killed
+# outright after a periodic checkpoint, and then continued with --restart writes the same bytes into every
+# output file (frames, pictures, pvd, every CSV log) as the same run never stopped; cmp decides, nothing is
+# tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
+# implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), two
+# bodies in contact (contact_pairs). What is not covered (GMM, another
+# case, a damaged file) is refused with exit 2.
+# usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
+set -u
+PMECH=$1; SRC=$2; WORK=$3
+rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
+export OMP_WAIT_POLICY=passive
+fail=0
+check() { d=$1; shift; if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi; }
+# every file of the uninterrupted run but run.json (wall times), checkpoint.h5 and the lock, byte for byte
+same_outputs() {
+  a=$1; b=$2; bad=0
+  [ -f "$a/particles.pvd" ] && [ -f "$b/particles.pvd" ] || return 1
+  for f in $(cd "$a" && ls -A); do
+    case $f in run.json|checkpoint.h5|.pmech.lock) continue;; esac
+    if ! cmp -s "$a/$f" "$b/$f"; then echo "     differs: $f"; bad=1; fi
+  done
+  for f in $(cd "$b" && ls -A); do
+    [ -e "$a/$f" ] || { echo "     not in the uninterrupted run: $f"; bad=1; }
+  done
+  return $bad
+}
+# case name, signal, frame to wait for, exit status[, threads]: a full run, a run stopped by the signal once that frame exists,
+# its continuation; then the two directories compared
+stop_and_continue() {
+  name=$1; sig=$2; frame=$3; code=$4; threads=${5:-1}
+  "$PMECH" run "$name.json" -o "$name.full" --quiet --threads $threads >/dev/null 2>&1
+  check "$name: the uninterrupted run" [ $? -eq 0 ]
+  "$PMECH" run "$name.json" -o "$name.part" --quiet --threads $threads >/dev/null 2>err.txt & pid=$!
+  i=0; while [ ! -f "$name.part/$frame" ] && [ $i -lt 3000 ]; do sleep 0.02; i=$((i + 1)); done
+  kill -"$sig" $pid; wait $pid; rc=$?
+  check "$name: SIG$sig stops the run mid-way (exit $rc)" [ $rc -eq "$code" ]
+  check "$name: a checkpoint was written" [ -f "$name.part/checkpoint.h5" ]
+  "$PMECH" run "$name.json" --restart "$name.part" --quiet --threads $threads >/dev/null 2>err.txt
+  rc=$?
+  check "$name: the restart runs to the end (exit $rc)" [ $rc -eq 0 ]
+  [ $rc -eq 0 ] || cat err.txt
+  check "$name: every output file is identical to the uninterrupted run's" same_outputs "$name.full" "$name.part"
+  check "$name: run.json counts the steps of both parts" python3 -c "
+import json, sys
+a = json.load(open('$name.full/run.json')); b = json.load(open('$name.part/run.json'))
+sys.exit(0 if a['steps'] == b['steps'] and a['end_time'] == b['end_time'] and b['exit_status'] == 0 else 1)"
+}
+
+# explicit MUSL, Mohr-Coulomb: a small cohesive column collapse with probes and a picture per frame
+python3 - "$SRC" <<'PY'
+import json, sys
+src = sys.argv[1]
+c = json.load(open(src + "/examples/column_collapse/case.json"))
+c["analysis"]["end_time"] = 0.6
+c["grid"]["cells"] = [30, 21]
+c["output"] = {"directory": "x.out", "interval": 0.02, "pictures": "plastic_strain", "picture_width": 200}
+json.dump(c, open("musl_mc.json", "w"), indent=1)
+# sources and sinks: the bin fed from above and emptied through its outlet
+c = json.load(open(src + "/tests/verification/cases/bin_feed.json"))
+c["output"] = {"interval": c["analysis"]["end_time"] / 50}
+json.dump(c, open("flow.json", "w"), indent=1)
+# implicit Newmark dynamics (newton.log, reactions.csv): the Dyka bar, four times as long
+c = json.load(open(src + "/tests/verification/cases/implicit_dyka_bar.json"))
+c["analysis"]["end_time"] = 0.1
+c["output"] = {"interval": 0.002}
+json.dump(c, open("implicit.json", "w"), indent=1)
+# implicit friction: a block sliding on a friction side, each contact node's force kept between steps
+c = json.load(open(src + "/tests/verification/cases/implicit_sliding_block.json"))
+c["boundary_conditions"][0]["coefficient"] = 0.1
+c["analysis"]["end_time"] = 0.04
+c["output"] = {"interval": 0.004}
+json.dump(c, open("implicit_friction.json", "w"), indent=1)
+# a checkpoint every 0.1 s of a 0.6 s run: killed outright (SIGKILL, no checkpoint of its own) after
+# the frame at 0.3 s, the run continues from the last checkpoint and replaces what was written after it
+c = json.load(open("musl_mc.json"))
+c["output"]["checkpoint_interval"] = 0.1
+json.dump(c, open("periodic.json", "w"), indent=1)
+# contact_pairs: a block dropped on another, contact_forces.csv averaging impulses between its rows
+c = json.load(open(src + "/tests/verification/cases/block_drop.json"))
+c["output"] = {"interval": c["analysis"]["end_time"] / 50}
+json.dump(c, open("contact_pairs.json", "w"), indent=1)
+# GMM moves its node cloud with the material, which a checkpoint does not hold: refused
+c = json.load(open(src + "/examples/column_collapse/case_gmm_mls.json"))
+c["analysis"]["end_time"] = 0.01
+c["output"] = {}
+json.dump(c, open("gmm.json", "w"), indent=1)
+PY
+# two threads: the colour blocks of the parallel scatter decide the order of additions into shared nodes
+stop_and_continue musl_mc INT particles_000004.vtu 130 2
+stop_and_continue flow TERM particles_000005.vtu 143
+stop_and_continue implicit INT particles_000005.vtu 130
+stop_and_continue implicit_friction INT particles_000004.vtu 130
+stop_and_continue contact_pairs INT particles_000010.vtu 130
+stop_and_continue periodic KILL particles_000016.vtu 137
+
+# ---- the layout of docs/checkpoint.md, read by HDF5's own h5dump (hdf5-tools)
+n=$(python3 -c "import json; print(json.load(open('musl_mc.full/run.json'))['particles'])")
+check "h5dump reads /particles/x as $n x 2" sh -c \
+  "h5dump -H -d /particles/x musl_mc.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 2 ) / ( $n, 2 ) }'"
+check "h5dump reads /time/t as the end time" sh -c \
+  "h5dump -a /time/t musl_mc.full/checkpoint.h5 | grep -q '(0): 0.6\$'"
+
+# ---- refusals: exit 2, a message that says why, nothing in the directory touched
+expect_refusal() { # description, text the message must hold, command...
+  d=$1; text=$2; shift 2
+  "$@" >out.txt 2>err.txt; rc=$?
+  check "$d: exit 2 (got $rc)" [ $rc -eq 2 ]
+  check "$d: says '$text'" grep -q -- "$text" err.txt
+}
+cp -r musl_mc.part kept.part
+sed 's/"friction_angle": 25/"friction_angle": 26/' musl_mc.json > changed.json
+expect_refusal "another case" "belongs to another case" "$PMECH" run changed.json --restart musl_mc.part --quiet
+check "another case: the outputs are untouched" same_outputs kept.part musl_mc.part
+mkdir -p empty.dir
+expect_refusal "no checkpoint" "there is no checkpoint.h5" "$PMECH" run musl_mc.json --restart empty.dir --quiet
+head -c 3000 musl_mc.part/checkpoint.h5 > cut.h5 && mv cut.h5 musl_mc.part/checkpoint.h5
+expect_refusal "a damaged checkpoint" "checkpoint.h5" "$PMECH" run musl_mc.json --restart musl_mc.part --quiet
+check "a damaged checkpoint: the outputs are untouched" same_outputs kept.part musl_mc.part
+"$PMECH" run gmm.json -o gmm.out --quiet >/dev/null 2>&1
+expect_refusal "gmm" "method mpm only" "$PMECH" run gmm.json --restart gmm.out --quiet
+expect_refusal "--restart with -o elsewhere" "cannot name another directory" \
+  "$PMECH" run musl_mc.json --restart musl_mc.part -o other.out --quiet
+
+if [ $fail -eq 0 ]; then echo "all checkpoint and restart checks passed"; fi
+exit $fail
