@@ -20,9 +20,11 @@
  * and reports the centre's rise off the plane at the end. The tolerances are in ROWS, with their reasons.
  *
  * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): the step dt1 only, a seventh of the work,
- * judged as the finest step is. The step hardly matters here (measured, dt1 / dt3: acceleration 0.858 /
- * 0.857 of the exact one for MPM, 0.719 / 0.715 GMM-MLS, 0.753 / 0.748 GMM-LME; spin 0.997 / 0.997,
- * 0.999 / 1.004, 0.992 / 0.999), so the same tolerances hold.
+ * judged as the finest step is, and the MPM and GMM-MLS rows only. The step hardly matters here
+ * (measured, dt1 / dt3: acceleration 0.858 / 0.857 of the exact one for MPM, 0.719 / 0.715 GMM-MLS,
+ * 0.753 / 0.748 GMM-LME; spin 0.997 / 0.997, 0.999 / 1.004, 0.992 / 0.999), so the same tolerances hold.
+ * The GMM-LME row is left out because under ASan on a loaded machine it alone outlasts the test's 15
+ * minutes (MPM took 99 s, GMM-MLS 260 s); verify_gmm_column_collapse's small variant runs LME instead.
  */
 #include "verify_util.h"
 
@@ -165,8 +167,8 @@ int main(int argc, char **argv)
         return 2;
     }
     int ok = 1;
-    const int n_dt = vu_small() ? 1 : N_DT;
-    for (int ir = 0; ir < N_ROWS; ir++) {
+    const int small = vu_small(), n_dt = small ? 1 : N_DT, n_rows = small ? 2 : N_ROWS;
+    for (int ir = 0; ir < n_rows; ir++) {
         const rd_row *row = &ROWS[ir];
         rd_result res[N_DT];
         for (int k = 0; k < n_dt; k++) {
