@@ -7,7 +7,10 @@
 Prints: the cutting force (along the cut) and the thrust force (across it) averaged over 0.1 ms windows
 and over the steady part, against Merchant's shear-plane estimate; the roughness of the cut surface in
 the last frame (RMS deviation of the top points of the workpiece behind the tool from a fitted line)."""
-import csv, math, os, re, struct, sys
+import csv, math, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from frames import frames, last_frame, read_vtu  # noqa: E402  (examples/frames.py)
 
 SIGMA0, MU = 50e6, 0.1                   # von Mises yield stress (Pa), tool friction
 DEPTH, RAKE = 0.002, math.radians(10.0)  # depth of cut (m), rake angle
@@ -31,28 +34,6 @@ def merchant():
 def tool_tip_x(t):
     travel = V_TOOL * (t * t / (2 * T_RAMP) if t < T_RAMP else T_RAMP / 2 + (t - T_RAMP))
     return X_TIP0 + travel
-
-
-def read_vtu(path):
-    """The particles of one frame: positions and the Float64 point arrays, as flat tuples."""
-    raw = open(path, "rb").read()
-    head_end = raw.index(b'<AppendedData encoding="raw">')
-    head = raw[:head_end].decode()
-    base = raw.index(b"_", head_end) + 1
-    out = {"n": int(re.search(r'NumberOfPoints="(\d+)"', head).group(1))}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)"([^>]*)format="appended" offset="(\d+)"', head):
-        if m.group(1) != "Float64":
-            continue
-        off = int(m.group(4))
-        nb = struct.unpack_from("<Q", raw, base + off)[0]
-        out[m.group(2)] = struct.unpack_from("<%dd" % (nb // 8), raw, base + off + 8)
-    return out
-
-
-def last_frame(d):
-    pvd = open(os.path.join(d, "particles.pvd")).read()
-    t, f = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)[-1]
-    return float(t), os.path.join(d, f)
 
 
 def forces(d, t_steady):

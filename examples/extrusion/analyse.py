@@ -7,7 +7,10 @@ standard library only).
 Prints: the die's, container's and ram's axial forces averaged over 0.1 ms windows, and their means over
 the steady part, against the slab-method estimate; the plastic strain across the extruded strip (beyond
 the die exit) in bands of height, which shows the strain growing away from the axis."""
-import csv, math, os, re, struct, sys
+import csv, math, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from frames import frames, last_frame, read_vtu  # noqa: E402  (examples/frames.py)
 
 SIGMA0, MU = 20e6, 0.1                  # von Mises yield stress (Pa), tool friction
 H0, H1, ALPHA = 0.010, 0.005, math.radians(30.0)   # container and exit half-heights (m), die semi-angle
@@ -19,28 +22,6 @@ def slab():
     no redundant work): p = 2k (1 + B)/B (R^B - 1), B = mu cot(alpha); frictionless: 2k ln R."""
     k, R, B = SIGMA0 / math.sqrt(3), H0 / H1, MU / math.tan(ALPHA)
     return 2 * k * (1 + B) / B * (R ** B - 1), 2 * k * math.log(R)
-
-
-def read_vtu(path):
-    """The particles of one frame: positions and the Float64 point arrays, as flat tuples."""
-    raw = open(path, "rb").read()
-    head_end = raw.index(b'<AppendedData encoding="raw">')
-    head = raw[:head_end].decode()
-    base = raw.index(b"_", head_end) + 1
-    out = {"n": int(re.search(r'NumberOfPoints="(\d+)"', head).group(1))}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)"([^>]*)format="appended" offset="(\d+)"', head):
-        if m.group(1) != "Float64":
-            continue
-        off = int(m.group(4))
-        nb = struct.unpack_from("<Q", raw, base + off)[0]
-        out[m.group(2)] = struct.unpack_from("<%dd" % (nb // 8), raw, base + off + 8)
-    return out
-
-
-def last_frame(d):
-    pvd = open(os.path.join(d, "particles.pvd")).read()
-    t, f = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)[-1]
-    return float(t), os.path.join(d, f)
 
 
 def forces(d, t_steady):

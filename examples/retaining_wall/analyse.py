@@ -11,34 +11,15 @@ wall's original outer face, x = 3.0 m) and the shear band behind the wall: in ea
 stored material's initial positions, the farthest point from the wall whose displacement is at least
 half that of the material next to the wall in the same row; a line fitted through those points from
 the wall's heel gives the band's angle with the horizontal, against Rankine's 45 + phi/2."""
-import csv, math, os, re, struct, sys
+import csv, math, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from frames import frames, last_frame, read_vtu  # noqa: E402  (examples/frames.py)
 
 T_RELEASE = 1.0
 WALL_FACE, WALL_BACK, BASE_Y, TOP_Y = 3.0, 3.5, 1.0, 4.0
 PHI_STORED = 30.0
 STORED_BODY = 3                       # bodies: soil, wall_base, wall, stored
-TYPES = {"Float64": "d", "Int32": "i", "Int64": "q", "UInt8": "B"}
-
-
-def read_vtu(path):
-    """The particles of one frame: the point arrays, as flat lists."""
-    raw = open(path, "rb").read()
-    head_end = raw.index(b'<AppendedData encoding="raw">')
-    head = raw[:head_end].decode()
-    base = raw.index(b"_", head_end) + 1
-    out = {"n": int(re.search(r'NumberOfPoints="(\d+)"', head).group(1))}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)"([^>]*)format="appended" offset="(\d+)"', head):
-        typ, name, off = m.group(1), m.group(2), int(m.group(4))
-        code = TYPES[typ]
-        nb = struct.unpack_from("<Q", raw, base + off)[0]
-        out[name] = struct.unpack_from("<%d%s" % (nb // struct.calcsize(code), code), raw, base + off + 8)
-    return out
-
-
-def frames(d):
-    pvd = open(os.path.join(d, "particles.pvd")).read()
-    return [(float(t), os.path.join(d, f)) for t, f in
-            re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)]
 
 
 def rotation(d):
