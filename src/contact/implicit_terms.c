@@ -49,7 +49,7 @@ int pm_contact_implicit_begin(pm_contact *ct, const pm_grid *g, const pm_approx 
     double *held;
     size_t rows;
     pm_check(pm_contact_implicit_history(ct, &held, &rows));
-        ct->surface_gaps = 1; /* the incremental penalty needs no head start (see the top) */
+    ct->surface_gaps = 1; /* the incremental penalty needs no head start (see the top) */
     pm_contact_detect(ct, g, t0);
     pm_contact_gaps(ct, a, p);
     for (size_t k = 0; k < ct->n_surfaces; k++) {
