@@ -223,8 +223,6 @@ int pm_case_parse_output(pm_case *c, json_t *o)
     if (!c->output.directory[0])
         return pm_case_fail(c->file, "output.directory", "is empty; give a directory (\".\" for the current one)",
                             NULL);
-    if (!c->output.directory[0])
-        return pm_case_fail(c->file, "output.directory", "must not be empty", NULL);
     pm_check(jr_number(&cx, o, "interval", 0, c->analysis.end_time / 100, &c->output.interval));
     pm_check(jr_range(&cx, "interval", c->output.interval, 0, 1, INFINITY, 0));
     pm_check(jr_number(&cx, o, "probe_interval", 0, 0, &c->output.probe_interval));
