@@ -1,6 +1,7 @@
 /* Reading DIR/checkpoint.h5 back into a run (checkpoint.h; the layout is docs/checkpoint.md). */
 #include "io/checkpoint.h"
 #include "io/checkpoint_h5.h"
+#include "io/checkpoint_lme.h"
 #include "io/checkpoint_meshfree.h"
 #include "io/output_internal.h"
 
@@ -286,6 +287,11 @@ static int read_meshfree(pm_checkpoint *ck, hid_t g, void *arg)
     return pm_ck_read_meshfree(&ck->f, g, arg);
 }
 
+static int read_lme(pm_checkpoint *ck, hid_t g, void *arg)
+{
+    return pm_ck_read_lme(&ck->f, g, arg);
+}
+
 static int read_run(pm_checkpoint *ck, hid_t g, void *arg)
 {
     pm_run_loop *l = arg;
@@ -313,6 +319,8 @@ int pm_checkpoint_restore_state(pm_checkpoint *ck, pm_sim *s, pm_run_loop *loop,
         pm_check(in_group(ck, "contact", read_contact, s));
     if (s->mf)
         pm_check(in_group(ck, "meshfree", read_meshfree, s));
+    if (pm_checkpoint_grid_lme(s))
+        pm_check(in_group(ck, "lme", read_lme, s->approx));
     pm_check(in_group(ck, "run", read_run, loop));
     int32_t stored = 0;
     pm_check(ck_attr_read(&ck->f, ck->f.id, "threads", CK_INT32, &stored));
