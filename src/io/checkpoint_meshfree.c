@@ -65,7 +65,7 @@ static int read_cloud(const ck_file *f, hid_t g, pm_cloud *c)
     long builds = 0;
     pm_check(ck_attr_read(f, g, "cell", CK_DOUBLE, &cell));
     pm_check(get_long(f, g, "builds", &builds));
-    double *x = malloc(2 * c->n * PM_DIM * sizeof *x);
+    double *x = malloc(2 * c->n * PM_DIM * sizeof *x); /* the positions now, then at the last build */
     if (!x)
         return pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
     double *built = x + c->n * PM_DIM;

@@ -195,9 +195,9 @@ int pm_cloud_restore(pm_cloud *c, const double *x, const double *x_built, double
     /* the cell side of that build already fitted its positions: pm_cloud_rebuild() keeps it, so lo,
      * nc and the order come out as they were */
     c->cell = cell;
-    memcpy(c->x, x_built, 2 * c->n * sizeof *c->x);
+    memcpy(c->x, x_built, PM_DIM * c->n * sizeof *c->x);
     pm_check(pm_cloud_rebuild(c));
-    memcpy(c->x, x, 2 * c->n * sizeof *c->x);
+    memcpy(c->x, x, PM_DIM * c->n * sizeof *c->x);
     int rebuilt = 0;
     pm_check(pm_cloud_update(c, &rebuilt));
     c->n_builds = n_builds;
