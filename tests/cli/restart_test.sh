@@ -5,7 +5,7 @@
 # tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
 # implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), two
 # bodies in contact (contact_pairs), MPM with LME (each particle's kept stencil), GMM with MLS and with
-# LME, RKPM (the node cloud and its cell list). What is not covered (a strength reduction, another case, a
+# LME, RKPM, implicit GMM (the node cloud, its cell list, the nodes' velocity and acceleration history). What is not covered (a strength reduction, another case, a
 # damaged file) is refused with exit 2.
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
@@ -93,6 +93,11 @@ for name, method, shape in (("gmm_mls", "gmm", "mls"), ("gmm_lme", "gmm", "lme")
     c["grid"]["cells"] = [30, 21]
     c["output"] = {"interval": 0.02}
     json.dump(c, open(name + ".json", "w"), indent=1)
+# implicit GMM: the Dyka bar with its nodes keeping their velocity and acceleration for the next predictor
+c = json.load(open("implicit.json"))
+c["method"], c["shape_function"] = "gmm", "mls"
+c["analysis"]["end_time"] = 0.05
+json.dump(c, open("implicit_gmm.json", "w"), indent=1)
 # MPM with lme: each particle keeps its last stencil and lambda, the start of the next evaluation
 c = json.load(open("musl_mc.json"))
 c["shape_function"] = "lme"
@@ -110,7 +115,7 @@ stop_and_continue mpm_lme INT particles_000012.vtu 130 2
 # the meshfree runs, with the number of cell-list builds: some before the stop and more after it, so the
 # continued run goes on from a restored cell list and rebuilds it as the uninterrupted run did
 builds() { h5dump -a /meshfree/builds "$1" 2>/dev/null | sed -n 's/.*(0): \([0-9]*\).*/\1/p'; }
-for m in gmm_mls:12 gmm_lme:12 rkpm:08; do
+for m in gmm_mls:12 gmm_lme:12 rkpm:08 implicit_gmm:10; do
   frame=${m#*:}; m=${m%:*}
   stop_and_continue $m INT particles_0000$frame.vtu 130 2
   b0=$(builds $m.stop.h5); b1=$(builds $m.full/checkpoint.h5)
