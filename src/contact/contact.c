@@ -90,6 +90,7 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
         cn->mu = mu;
         cn->gap = 0.0;
         cn->held = 0;
+        cn->corner = 0;
     }
     ct->n_node = ct->n_fixed;
     return k;

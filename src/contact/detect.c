@@ -94,6 +94,7 @@ static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
         cn->mu = sf->mu;
         cn->gap = sd;
         cn->held = 0;
+        cn->corner = 0;
     }
 }
 
