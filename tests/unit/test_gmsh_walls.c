@@ -3,7 +3,7 @@
  * radial outward normal at every node within 1e-3 on unevenly spaced nodes (the two edges' normals
  * weighted by the inverse of their lengths, which is exact on a circle), an L-shaped outline has two entries at each inward
  * corner and one that follows the material at its re-entrant corner, and its signed distances are the
- * L's. A case naming a group the mesh lacks, or a 2-D group, is refused with the names there are. */
+ * L's; the two coincident nodes of a tool's tip have one face's normal each. A case naming a group the mesh lacks, or a 2-D group, is refused with the names there are. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -187,6 +187,60 @@ static void l_shape(void **state)
     pm_grid_free(&g);
 }
 
+/* A tool's tip with two coincident nodes (seed 004 §5.3.2): cells of 0.5 over [0,2]x[0,2] without the
+ * tool [1,2]x[1,2], the material parted along y = 1 from x = 0.5 to the tip (1, 1), which has one node
+ * for the cells above (on the rake face x = 1) and one for those below (on the clearance face y = 1). */
+static void tool_tip_two_nodes(void **state)
+{
+    (void)state;
+    int tag[5][5], n = 0, upper_tip;
+    double xy[2 * 26];
+    for (int j = 0; j <= 4; j++)
+        for (int i = 0; i <= 4; i++) {
+            tag[i][j] = 0;
+            if (i >= 3 && j >= 3)
+                continue; /* inside the tool */
+            xy[2 * n] = 0.5 * i, xy[2 * n + 1] = 0.5 * j;
+            tag[i][j] = ++n;
+        }
+    xy[2 * n] = 1.0, xy[2 * n + 1] = 1.0;
+    upper_tip = ++n;
+    int tris[6 * 12], nt = 0;
+    for (int j0 = 0; j0 < 4; j0++)
+        for (int i0 = 0; i0 < 4; i0++) {
+            if (i0 >= 2 && j0 >= 2)
+                continue;
+            int c[4] = {tag[i0][j0], tag[i0 + 1][j0], tag[i0 + 1][j0 + 1], tag[i0][j0 + 1]};
+            for (int k = 0; k < 4; k++)
+                if (j0 >= 2 && c[k] == tag[2][2])
+                    c[k] = upper_tip;
+            const int t[6] = {c[0], c[1], c[2], c[0], c[2], c[3]};
+            memcpy(tris + 3 * nt, t, sizeof t);
+            nt += 2;
+        }
+    /* the tool's faces: the rake face up from the upper tip node, the clearance face right of the lower */
+    const int lines[] = {upper_tip, tag[2][3], tag[2][3], tag[2][4], tag[2][2], tag[3][2], tag[3][2], tag[4][2]};
+    pm_grid g;
+    assert_int_equal(read_mesh(&g, "tool", (size_t)n, xy, 4, lines, (size_t)nt, tris), 0);
+    const pm_node_set *set = pm_grid_find_set(&g, "tool");
+    assert_non_null(set);
+    assert_int_equal(set->n_edges, 4);
+    pm_contact *ct;
+    assert_int_equal(pm_contact_new(g.n_nodes, &ct), 0);
+    assert_int_equal(pm_contact_add_edge_set(ct, &g, set, 0.1, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    assert_int_equal(ct->n_node, 6);
+    double nn[2][2];
+    int corner = 1;
+    /* each tip node with its own face's normal: out of the material, into the tool */
+    assert_int_equal(entries_at(ct, &g, 1, 1, nn, &corner), 2);
+    assert_int_equal(corner, 0);
+    const int rake_first = fabs(nn[0][0] - 1) < 1e-12;
+    assert_true(fabs(nn[rake_first ? 0 : 1][0] - 1) < 1e-12 && fabs(nn[rake_first ? 0 : 1][1]) < 1e-12);
+    assert_true(fabs(nn[rake_first ? 1 : 0][1] - 1) < 1e-12 && fabs(nn[rake_first ? 1 : 0][0]) < 1e-12);
+    pm_contact_destroy(ct);
+    pm_grid_free(&g);
+}
+
 /* A case on the incline mesh with a friction condition on @p group. */
 static int incline_case(const char *group, const char *coefficient, pm_case *c, pm_sim **s)
 {
@@ -254,6 +308,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(circle_rim),
         cmocka_unit_test(l_shape),
+        cmocka_unit_test(tool_tip_two_nodes),
         cmocka_unit_test(incline_walls_and_bad_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
