@@ -21,6 +21,7 @@
 #include "pmech/error.h"
 #include "pmech/grid.h"
 #include "pmech/sim.h"
+#include "solver/sim_internal.h"
 
 static void repo_path(const char *rel, char *out, size_t n)
 {
@@ -28,11 +29,11 @@ static void repo_path(const char *rel, char *out, size_t n)
     snprintf(out, n, "%.*s%s", (int)(cut ? cut - f : 0), f, rel);
 }
 
-/* A mesh of one curve group (tag 1) and one surface group (tag 2) from nodes, lines and triangles. */
-static int read_mesh(pm_grid *g, const char *curve, size_t nn, const double *xy, size_t nl, const int *lines,
-                     size_t nt, const int *tris)
+/* Write a mesh of one curve group (tag 1) and one surface group (tag 2, "inside") from nodes, lines and
+ * triangles to a new file; its name into path (a mkstemp template). */
+static void write_mesh(char *path, const char *curve, size_t nn, const double *xy, size_t nl, const int *lines,
+                       size_t nt, const int *tris)
 {
-    char path[] = "/tmp/pmech_test_gmsh_walls_XXXXXX";
     const int fd = mkstemp(path);
     assert_true(fd >= 0);
     FILE *f = fdopen(fd, "w");
@@ -53,6 +54,13 @@ static int read_mesh(pm_grid *g, const char *curve, size_t nn, const double *xy,
         fprintf(f, "%zu %d %d %d\n", nl + e + 1, tris[3 * e], tris[3 * e + 1], tris[3 * e + 2]);
     fprintf(f, "$EndElements\n");
     fclose(f);
+}
+
+static int read_mesh(pm_grid *g, const char *curve, size_t nn, const double *xy, size_t nl, const int *lines,
+                     size_t nt, const int *tris)
+{
+    char path[] = "/tmp/pmech_test_gmsh_walls_XXXXXX";
+    write_mesh(path, curve, nn, xy, nl, lines, nt, tris);
     const int rc = pm_grid_gmsh_read(g, path);
     if (rc)
         fprintf(stderr, "%s\n", pm_error_message());
@@ -241,6 +249,94 @@ static void tool_tip_two_nodes(void **state)
     pm_grid_free(&g);
 }
 
+enum { LN = 8 }; /* cells of 0.25 along each unit side of the L */
+
+/* The L of l_shape in cells of 0.25, its whole outline the group "outline"; a block of material just off
+ * one face of the re-entrant corner (1, 1): after one step the corner's entry has taken that face's
+ * normal from the particles nearest it. */
+static void tip_normal_from_material(const double body_min[2], const double body_max[2], const double want[2])
+{
+    int tag[2 * LN + 1][2 * LN + 1], n = 0;
+    static double xy[2 * (2 * LN + 1) * (2 * LN + 1)];
+    static int tris[6 * 4 * LN * LN], lines[2 * 8 * LN];
+    for (int j = 0; j <= 2 * LN; j++)
+        for (int i = 0; i <= 2 * LN; i++) {
+            tag[i][j] = 0;
+            if (i > LN && j > LN)
+                continue;
+            xy[2 * n] = (double)i / LN, xy[2 * n + 1] = (double)j / LN;
+            tag[i][j] = ++n;
+        }
+    size_t nt = 0, nl = 0;
+#define CELL(i, j) ((i) >= 0 && (j) >= 0 && (i) < 2 * LN && (j) < 2 * LN && !((i) >= LN && (j) >= LN))
+    for (int j = 0; j < 2 * LN; j++)
+        for (int i = 0; i < 2 * LN; i++) {
+            if (!CELL(i, j))
+                continue;
+            const int t[6] = {tag[i][j], tag[i + 1][j], tag[i + 1][j + 1], tag[i][j], tag[i + 1][j + 1], tag[i][j + 1]};
+            memcpy(tris + 3 * nt, t, sizeof t);
+            nt += 2;
+            /* a side with no cell beyond it is on the outline */
+            const int side[4][4] = {{i, j - 1, i + 1, j}, {i + 1, j, i + 1, j + 1}, {i, j + 1, i + 1, j + 1},
+                                    {i - 1, j, i, j + 1}};
+            const int ends[4][4] = {{i, j, i + 1, j}, {i + 1, j, i + 1, j + 1}, {i, j + 1, i + 1, j + 1},
+                                    {i, j, i, j + 1}};
+            for (int k = 0; k < 4; k++)
+                if (!CELL(side[k][0], side[k][1])) {
+                    lines[2 * nl] = tag[ends[k][0]][ends[k][1]];
+                    lines[2 * nl + 1] = tag[ends[k][2]][ends[k][3]];
+                    nl++;
+                }
+        }
+#undef CELL
+    char path[] = "/tmp/pmech_test_gmsh_walls_XXXXXX";
+    write_mesh(path, "outline", (size_t)n, xy, nl, lines, nt, tris);
+    char text[2048];
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01, \"gravity\": [0, 0] },"
+             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"%s\" },"
+             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,"
+             "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"shape\": { \"type\": \"rectangle\","
+             "                \"min\": [%g, %g], \"max\": [%g, %g] } } ],"
+             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"outline\", \"coefficient\": 0.2 } ] }",
+             path, body_min[0], body_min[1], body_max[0], body_max[1]);
+    pm_case c;
+    int rc = pm_case_load_buffer(text, strlen(text), "/tmp/l_case.json", &c);
+    pm_sim *s = NULL;
+    if (!rc)
+        rc = pm_sim_create(&c, &s, 1);
+    if (rc)
+        fprintf(stderr, "%s\n", pm_error_message());
+    assert_int_equal(rc, 0);
+    const pm_contact *ct = s->contact;
+    size_t tip = ct->n_node;
+    for (size_t e = 0; e < ct->n_node; e++)
+        if (ct->node[e].corner)
+            tip = e;
+    assert_true(tip < ct->n_node);
+    assert_true(fabs(s->grid.x[2 * ct->node[tip].node] - 1) < 1e-12 && fabs(s->grid.x[2 * ct->node[tip].node + 1] - 1) < 1e-12);
+    assert_int_equal(pm_explicit_step(s, 1e-5), 0);
+    const double *nn = ct->node[tip].normal;
+    printf("material off (%g..%g, %g..%g): tip normal (%g, %g), gap %g\n", body_min[0], body_max[0], body_min[1],
+           body_max[1], nn[0], nn[1], ct->node[tip].gap);
+    assert_true(fabs(nn[0] - want[0]) < 1e-12 && fabs(nn[1] - want[1]) < 1e-12);
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+    unlink(path);
+}
+
+static void tip_normal_follows_material(void **state)
+{
+    (void)state;
+    /* below the clearance face y = 1 (right of the tip): pushed down, normal +y into the tool */
+    const double lo1[2] = {1.02, 0.6}, hi1[2] = {1.5, 0.99}, up[2] = {0, 1};
+    tip_normal_from_material(lo1, hi1, up);
+    /* left of the rake face x = 1 (above the tip): normal +x */
+    const double lo2[2] = {0.6, 1.02}, hi2[2] = {0.99, 1.5}, right[2] = {1, 0};
+    tip_normal_from_material(lo2, hi2, right);
+}
+
 /* A case on the incline mesh with a friction condition on @p group. */
 static int incline_case(const char *group, const char *coefficient, pm_case *c, pm_sim **s)
 {
@@ -309,6 +405,7 @@ int main(void)
         cmocka_unit_test(circle_rim),
         cmocka_unit_test(l_shape),
         cmocka_unit_test(tool_tip_two_nodes),
+        cmocka_unit_test(tip_normal_follows_material),
         cmocka_unit_test(incline_walls_and_bad_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
