@@ -4,7 +4,8 @@
  * interface; none of them holds a contact list of its own.
  *
  * Life of a contact object (one per simulation, pm_sim::contact, destroyed with it):
- *   pm_contact_create   from the case: every `friction` condition becomes a surface; with gmm and
+ *   pm_contact_create   from the case: every `friction` condition becomes a surface (on a Gmsh group
+ *                       on the mesh's boundary, a wall of its edges with a normal per node: edges.c); with gmm and
  *                       rkpm a `fixed` grid side that holds its normal component becomes a guard wall
  *                       as well (nodes that reach the side later are stopped there: it sticks when the
  *                       tangent is held too, slides freely otherwise); every obstacles[] entry
@@ -12,7 +13,7 @@
  *   pm_contact_detect   at the start of every step (pm_sim_update_constraints): the obstacles are
  *                       moved to their place at time t (displacement = the exact integral of their
  *                       velocity functions), and the candidate nodes found. A node-set surface (an
- *                       MPM grid side or line) keeps the nodes it had at t = 0; the other surfaces
+ *                       MPM grid side or line, or a Gmsh wall) keeps the nodes it had at t = 0; the other surfaces
  *                       take the nodes within pm_contact::reach of them, so that moving meshfree
  *                       nodes and moving obstacles meet as they move. Each entry holds the normal
  *                       into the surface at the node. A box around each surface (its points, disk
