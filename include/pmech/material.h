@@ -85,6 +85,15 @@ typedef struct pm_material_ops {
      * must resolve it as well as the waves: see pm_material_signal_speed().
      */
     double (*rate_viscosity)(const pm_material *m);
+    /**
+     * Set the history from the density measured from the points' positions
+     * (`analysis.density_update: "positions"`), @p rho_ratio = that density over the material's
+     * reference density, before the step's stress update adds the step's own increment. For a model
+     * whose stress follows the density (the granular pressure of seed 004 eq. 24), this makes it the
+     * density the points actually have around it, not the one their own deformation gradients
+     * accumulated. NULL: the model's history does not depend on the density.
+     */
+    void (*density_state)(const pm_material *m, double rho_ratio, double *state);
     /** Equivalent plastic strain stored in @p state (NULL: model has none, reported as 0). */
     double (*plastic_strain)(const pm_material *m, const double *state);
     /**

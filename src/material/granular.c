@@ -12,6 +12,13 @@
  * eqs. 16-22) with this G and the total pressure p. Always p > 0: there is no tension; a strongly
  * dilated (loose) point has p -> 0 and no shear strength.
  * eps_v is accumulated as the trace of the mid-step (Hughes-Winget) strain increments.
+ *
+ * The loosest state: a grain skeleton cannot be looser than e_max (`max_void_ratio`). Material that
+ * separates (a portion falling freely, spray thrown up on impact) is no longer a skeleton; the log
+ * law alone would let its eps_v grow without bound, so that on landing it would have to be compressed
+ * back through all that expansion before it carried any pressure, and would pile up at a fraction of
+ * its density. eps_v is therefore held at eps_v,max = ln[(1 + e_max)/(1 + e0)]: expansion beyond it is
+ * stress-free, and a point landing from flight compacts from e_max. The default e_max is unbounded.
  * State: [0] equivalent viscoplastic strain, [1] eps_v.
  */
 #include "material/material_internal.h"
@@ -20,8 +27,8 @@
 
 #include <string.h>
 
-enum { P_KAPPA, P_E0, P_P0, P_MU, P_NU, P_PHI, P_GAMMA, P_N };
-enum { D_M, D_A, D_GF };
+enum { P_KAPPA, P_E0, P_P0, P_MU, P_NU, P_PHI, P_GAMMA, P_N, P_EMAX };
+enum { D_M, D_A, D_GF, D_EVMAX };
 
 static const pm_param_spec gr_params[] = {
     {"kappa", NAN, PM_PARAM_REQUIRED | PM_PARAM_LO_OPEN, 0.0, INFINITY,
@@ -38,6 +45,8 @@ static const pm_param_spec gr_params[] = {
     {"viscosity", NAN, PM_PARAM_REQUIRED | PM_PARAM_LO_OPEN, 0.0, INFINITY,
      "viscosity parameter gamma (1/s) of the Perzyna flow function"},
     {"exponent", 1.0, PM_PARAM_LO_OPEN, 0.0, INFINITY, "exponent N > 0 of the flow function"},
+    {"max_void_ratio", INFINITY, PM_PARAM_LO_OPEN, 0.0, INFINITY,
+     "loosest void ratio e_max > void_ratio: expansion beyond it is stress-free"},
 };
 
 static int gr_init(pm_material *m)
@@ -54,10 +63,14 @@ static int gr_init(pm_material *m)
         return pm_error_set(PM_EINPUT, "poisson_ratio = %g: must be in (-1, 0.5)", nu);
     if (!(phi > 0 && phi < 90))
         return pm_error_set(PM_EINPUT, "friction_angle = %g: must be in (0, 90)", phi);
+    const double e0 = m->param[P_E0], emax = m->param[P_EMAX];
+    if (!(emax > e0))
+        return pm_error_set(PM_EINPUT, "max_void_ratio = %g: must be > void_ratio = %g", emax, e0);
     const double s = sin(pm_deg2rad(phi));
     m->derived[D_M] = 18.0 * s / (9.0 - s * s);
     m->derived[D_A] = (1.0 + m->param[P_E0]) / m->param[P_KAPPA];
     m->derived[D_GF] = 1.5 * (1.0 - 2.0 * nu) / (1.0 + nu);
+    m->derived[D_EVMAX] = isfinite(emax) ? log((1.0 + emax) / (1.0 + e0)) : INFINITY;
     return PM_OK;
 }
 
@@ -72,7 +85,7 @@ static void gr_init_state(const pm_material *m, const double stress[6], double *
     if (!(p > 0))
         return;
     const double J = 1.0 - log(p / m->param[P_P0]) / m->derived[D_A];
-    state[1] = J > 1e-3 ? log(J) : log(1e-3);
+    state[1] = fmin(J > 1e-3 ? log(J) : log(1e-3), m->derived[D_EVMAX]);
 }
 
 static int gr_update(const pm_material *m, const pm_material_step *in, double *state,
@@ -86,12 +99,13 @@ static int gr_update(const pm_material *m, const pm_material_step *in, double *s
     const double dev_v = de[0] + de[1] + de[2];
     if (!isfinite(dev_v))
         return PM_ESIM;
-    const double ev = state[1] + dev_v, J = exp(ev);
+    const double ev_max = m->derived[D_EVMAX], ev = state[1] + dev_v, J = exp(ev);
     const double pe = p0 * exp(A * (1.0 - J));
-    const int visc = in->dt > 0 && mu > 0 && dev_v < 0;
+    /* grains still apart at the step's end are not a skeleton: no viscous resistance */
+    const int visc = in->dt > 0 && mu > 0 && dev_v < 0 && ev < ev_max;
     const double pv = visc ? -mu * dev_v / in->dt : 0.0;
     const double p = pe + pv, Kt = A * pe * J, G = gf * Kt;
-    state[1] = ev;
+    state[1] = fmin(ev, ev_max);
     /* trial deviator s_e = s_rot + 2G dev(de) */
     double sdev[6], mrot, se[6], e[6];
     pm_voigt_split(srot, sdev, &mrot);
@@ -141,6 +155,15 @@ static int gr_update(const pm_material *m, const pm_material_step *in, double *s
                 tangent[6 * i + j] += ratio * 2.0 * e[i] * dGv;
     }
     return isfinite(stress[0] + stress[3]) ? PM_OK : PM_ESIM;
+}
+
+/* Seed 004 §3.3: the volume change of the granular pressure from the density of the points'
+ * positions, J = rho_ref / rho, held at the loosest state like the accumulated one. */
+static void gr_density_state(const pm_material *m, double rho_ratio, double *state)
+{
+    (void)m;
+    if (rho_ratio > 0)
+        state[1] = fmax(state[1], -log(rho_ratio));
 }
 
 static double gr_eps_p(const pm_material *m, const double *state)
@@ -195,6 +218,7 @@ const pm_material_ops pm_granular_ops = {
     .update = gr_update,
     .wave_speed = gr_wave_speed,
     .rate_viscosity = gr_rate_viscosity,
+    .density_state = gr_density_state,
     .plastic_strain = gr_eps_p,
     .strain_energy = gr_energy,
     .reduce_strength = NULL, /* no Coulomb strength for the search to lower */

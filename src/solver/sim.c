@@ -332,8 +332,13 @@ int pm_sim_volumes_from_positions(pm_sim *s)
     pm_particles *p = &s->p;
     pm_check(pm_density_from_positions(&s->grid, p, s->c->formulation == PM_AXISYMMETRIC, -1, s->rho_node, s->rho_p,
                                        s->rho_work));
-    for (size_t i = 0; i < p->n; i++)
-        if (s->rho_p[i] > 0)
-            p->vol[i] = p->mass[i] / s->rho_p[i];
+    for (size_t i = 0; i < p->n; i++) {
+        if (!(s->rho_p[i] > 0))
+            continue;
+        p->vol[i] = p->mass[i] / s->rho_p[i];
+        const pm_material *m = &s->c->materials[p->material[i]];
+        if (m->ops->density_state)
+            m->ops->density_state(m, s->rho_p[i] / m->density, p->state + p->n_state * i);
+    }
     return PM_OK;
 }

@@ -125,6 +125,9 @@ static void invalid_parameters(void **unused)
     assert_int_equal(try_param("granular", "poisson_ratio", 0.5), PM_EINPUT);
     assert_int_equal(try_param("granular", "bulk_viscosity", -1), PM_EINPUT);
     assert_int_equal(try_param("granular", "friction_angle", 95), PM_EINPUT);
+    /* the loosest state must be looser than the reference void ratio 0.9 */
+    assert_int_equal(try_param("granular", "max_void_ratio", 0.9), PM_EINPUT);
+    assert_int_equal(try_param("granular", "max_void_ratio", 1.0), PM_OK);
     /* the message gives value and allowed range */
     try_param("drucker_prager", "cone_fit", 2);
     assert_non_null(strstr(pm_error_message(), "cone_fit = 2"));

@@ -586,6 +586,60 @@ static void granular_law(void **unused)
     }
 }
 
+/* The loosest state e_max = 1 (seed 004's e0 = 0.9, kappa = 0.02): eps_v,max = ln(2 / 1.9). Grains pulled
+ * apart beyond it are stress-free and keep eps_v,max; compression from there carries the log law's
+ * pressure and the bulk viscosity; a point still looser than e_max at the step's end (the density from
+ * positions put it there) has no viscous pressure. Exact values: the law is evaluated in closed form. */
+static void granular_loosest_state(void **unused)
+{
+    (void)unused;
+    const kv p[] = {{"kappa", 0.02}, {"void_ratio", 0.9}, {"reference_pressure", 600},
+                    {"bulk_viscosity", 1e4}, {"poisson_ratio", 0.3}, {"friction_angle", 30},
+                    {"viscosity", 1e4}, {"exponent", 1}, {"max_void_ratio", 1.0}, {NULL, 0}};
+    pm_material m = make("granular", NAN, NAN, p);
+    const double A = 1.9 / 0.02, evmax = log(2.0 / 1.9), dt = 1e-4;
+    const double s0[6] = {-600, -600, -600, 0, 0, 0};
+    double st0[PM_MAT_MAX_STATE] = {0}, de[6] = {0}, s[6], st[PM_MAT_MAX_STATE];
+    /* expansion from e0 by 10 % (e = 1.1): the log law's pressure at e = 1.1 (0.4 Pa, below the 4 Pa
+     * of e_max), and the state held at e_max */
+    st0[1] = 0;
+    de[0] = de[1] = de[2] = 0.1 / 3;
+    assert_int_equal(upd(&m, s0, st0, de, dt, s, st, NULL), PM_OK);
+    assert_true(st[1] == evmax);
+    const double pexp = 600 * exp(A * (1 - exp(0.1)));
+    assert_true(fabs(-pm_voigt_mean(s) - pexp) <= 1e-10 * pexp);
+    assert_true(-pm_voigt_mean(s) < 600 * exp(A * (1 - 2.0 / 1.9)));
+    /* compression from e_max: log law plus mu times the rate */
+    st0[1] = evmax;
+    de[0] = de[1] = de[2] = -1e-3 / 3;
+    assert_int_equal(upd(&m, s0, st0, de, dt, s, st, NULL), PM_OK);
+    const double pc = 600 * exp(A * (1 - exp(evmax - 1e-3))) + 1e4 * 1e-3 / dt;
+    assert_true(fabs(st[1] - (evmax - 1e-3)) <= 1e-14);
+    assert_true(fabs(-pm_voigt_mean(s) - pc) <= 1e-12 * pc);
+    /* compression of a point still looser than e_max at the step's end: no viscous part */
+    st0[1] = 0.5;
+    assert_int_equal(upd(&m, s0, st0, de, dt, s, st, NULL), PM_OK);
+    const double pl = 600 * exp(A * (1 - exp(0.5 - 1e-3)));
+    assert_true(fabs(-pm_voigt_mean(s) - pl) <= 1e-12 * pl + 1e-300);
+    assert_true(-pm_voigt_mean(s) < 1e-6);
+    assert_true(st[1] == evmax);
+    /* the density from positions loosens the state (rho / rho_ref = 0.5: eps_v = ln 2), never
+     * densifies it (1.05 against a point at eps_v = -0.02) */
+    assert_non_null(m.ops->density_state);
+    st0[1] = -0.02;
+    m.ops->density_state(&m, 0.5, st0);
+    assert_true(fabs(st0[1] - log(2.0)) <= 1e-15);
+    st0[1] = -0.02;
+    m.ops->density_state(&m, 1.05, st0);
+    assert_true(st0[1] == -0.02);
+    /* without max_void_ratio expansion is unbounded as before */
+    pm_material u = granular();
+    st0[1] = 0;
+    de[0] = de[1] = de[2] = 0.1 / 3;
+    assert_int_equal(upd(&u, s0, st0, de, dt, s, st, NULL), PM_OK);
+    assert_true(fabs(st[1] - 0.1) <= 1e-12);
+}
+
 /* ---- elastic models --------------------------------------------------------------------------- */
 
 static void linear_elastic_tangent(void **unused)
@@ -727,6 +781,7 @@ int main(void)
         cmocka_unit_test(vp_no_tension),
         cmocka_unit_test(granular_law),
         cmocka_unit_test(granular_step_speed),
+        cmocka_unit_test(granular_loosest_state),
         cmocka_unit_test(linear_elastic_tangent),
         cmocka_unit_test(neo_hookean_tangent),
         cmocka_unit_test(rigid_rotation_all_models),
