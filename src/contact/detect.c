@@ -148,10 +148,26 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
     for (size_t i = 0; i < p->n; i++) {
         if (!in_box(sf, p->x + PM_DIM * i))
             continue;
-        double n[PM_DIM];
-        const double sd = pm_contact_distance(ct, sf, p->x + PM_DIM * i, n);
-        if (sd > ct->reach || pm_approx_eval(a, p, i, &st) != 0)
-            continue;
+        double n[PM_DIM], sd;
+        if (sf->kind == PM_CONTACT_EDGES) {
+            /* a wall of many edges whose box may hold the whole body (a bin's outline): the distance to
+             * every edge only for the particles whose stencil holds one of its nodes, the only ones that
+             * set a gap below */
+            if (pm_approx_eval(a, p, i, &st) != 0)
+                continue;
+            int near = 0;
+            for (int j = 0; j < st.n && !near; j++)
+                near = ct->slot[st.node[j]] >= 0 && st.N[j] > 0;
+            if (!near)
+                continue;
+            sd = pm_contact_distance(ct, sf, p->x + PM_DIM * i, n);
+            if (sd > ct->reach)
+                continue;
+        } else {
+            sd = pm_contact_distance(ct, sf, p->x + PM_DIM * i, n);
+            if (sd > ct->reach || pm_approx_eval(a, p, i, &st) != 0)
+                continue;
+        }
         /* the penalty law pushes on the particles' centres: its force grows from the first step on,
          * and a body seeded against the obstacle starts with no energy stored in it */
         const double gap = sf->law == PM_CONTACT_LAW_PENALTY_COULOMB && !ct->surface_gaps ? sd : sd - half_size(p, i);
