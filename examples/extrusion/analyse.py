@@ -27,7 +27,14 @@ def slab():
 def forces(d, t_steady):
     rows = list(csv.DictReader(open(os.path.join(d, "forces.csv"))))
     t = [float(r["time"]) for r in rows]
-    cols = {"die": "die_x", "container": "container_x", "ram": "ram_x"}
+    if "die_x" in rows[0]:   # case_rectangle.json: die and container are obstacles
+        cols = {"die": ["die_x"], "container": ["container_x"], "ram": ["ram_x"]}
+    else:                    # case.json: friction conditions 1 (container), 2 and 3 (die face and land)
+        cols = {"die": ["boundary_conditions2_x", "boundary_conditions3_x"],
+                "container": ["boundary_conditions1_x"], "ram": ["ram_x"]}
+
+    def fx(i, k):
+        return sum(float(rows[i][c]) for c in cols[k])
     p_slab, p_ideal = slab()
     print("axial forces on the half model (kN/m; die and container: the force the material exerts on them, "
           "ram: the force it exerts on the material)")
@@ -38,14 +45,14 @@ def forces(d, t_steady):
     while t0 < t[-1] - 1e-12:
         sel = [i for i in range(len(t)) if t0 < t[i] <= t0 + w + 1e-12]
         if sel:
-            m = {k: -sum(float(rows[i][c]) for i in sel) / len(sel) / 1e3 for k, c in cols.items()}
+            m = {k: -sum(fx(i, k) for i in sel) / len(sel) / 1e3 for k in cols}
             m["ram"] = -m["ram"]
             print("  %5.2f-%5.2f  %8.1f  %8.1f  %8.1f   %.3f" % (t0 * 1e3, (t0 + w) * 1e3, m["die"], m["container"],
                                                             m["ram"], m["die"] / (p_slab * H0 / 1e3)))
         t0 += w
     sel = [i for i in range(len(t)) if t[i] > t_steady]
-    die = -sum(float(rows[i]["die_x"]) for i in sel) / len(sel)
-    ram = sum(float(rows[i]["ram_x"]) for i in sel) / len(sel)
+    die = -sum(fx(i, "die") for i in sel) / len(sel)
+    ram = sum(fx(i, "ram") for i in sel) / len(sel)
     print("  mean after %.2f ms: die %.1f kN/m = %.3f x slab, ram %.1f kN/m" % (t_steady * 1e3, die / 1e3,
                                                                              die / (p_slab * H0), ram / 1e3))
 

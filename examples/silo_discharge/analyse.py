@@ -8,9 +8,10 @@ The outlet opens at T_OPEN = 1 s (the fill settles on it under gravity ramped up
 second); times below are counted from the opening. Prints: the discharge rate over successive 0.1 s
 windows against Beverloo's law for the axisymmetric outlet; the flow pattern at three heights (the
 fraction of the cross-section that moves, the velocity ratio wall/axis); the wall-normal traction
-along the wall at rest (at the opening) and during the discharge, against Janssen's. The wall traction
-is the radial stress of the particles in the cell column next to the wall (no wall-traction output
-exists), averaged over bands of 0.25 m."""
+along the wall at rest (at the opening) and during the discharge, against Janssen's: the wall's own
+traction (wall_boundary_conditions0.csv, the first friction condition's profile from the contact
+impulses, averaged over the frame interval before each instant) and, beside it, the radial stress of
+the particles in the cell column next to the wall, both averaged over bands of 0.25 m."""
 import csv, math, os, re, struct, sys
 
 RHO, G, R, H_FILL = 1500.0, 9.81, 1.0, 3.0
@@ -99,20 +100,36 @@ def flow_pattern(f, t, h):
               % (z, va, vw, vw / va if va else float("nan"), moving / total))
 
 
-def wall_traction(f, label, h):
-    """Mean -sigma_rr of the particles in the cell column next to the wall, in 0.25 m bands of height."""
+def wall_profile(d, t):
+    """(z, normal traction in Pa) of the wall's stations in its profile row at time t (the wall is the
+    first friction condition; its profile is per radian, divided by the wall's radius)."""
+    path = os.path.join(d, "wall_boundary_conditions0.csv")
+    if not os.path.exists(path):
+        return []
+    rows = [r for r in csv.DictReader(open(path)) if abs(float(r["time"]) - t) < 2e-3]
+    return [(float(r["y"]), float(r["normal"]) / R) for r in rows]
+
+
+def wall_traction(d, f, t, label, h):
+    """Wall-normal traction in 0.25 m bands of height: the wall's own (its contact impulses) and the
+    mean -sigma_rr of the particles in the cell column next to the wall."""
     x, s = f["Points"], f["stress"]
     top = max(x[3 * i + 1] for i in range(f["n"]) if x[3 * i] > R - h)
-    print("wall-normal traction (kPa) %s; Janssen with K = 1 - sin(phi) = %.3f, mu_w = tan 20 deg, "
-          "depth from the fill's top at the wall (%.2f m)" % (label, 1 - math.sin(PHI), top))
+    prof = wall_profile(d, t)
+    print("wall-normal traction (kPa) %s: the wall's own, the particles' -sigma_rr next to it; Janssen with "
+          "K = 1 - sin(phi) = %.3f, mu_w = tan 20 deg, depth from the fill's top at the wall (%.2f m)"
+          % (label, 1 - math.sin(PHI), top))
     K = 1 - math.sin(PHI)
     y0 = 0.0
     while y0 < H_FILL - 1e-9:
         sel = [-s[4 * i] for i in range(f["n"]) if x[3 * i] > R - h and y0 <= x[3 * i + 1] < y0 + 0.25]
+        wall = [p for z, p in prof if y0 <= z < y0 + 0.25]
         if sel:
             depth = top - (y0 + 0.125)
             jans = K * RHO * G * R / (2 * K * MU_W) * (1 - math.exp(-2 * K * MU_W * depth / R)) if depth > 0 else 0
-            print("  y %.2f-%.2f m: %7.2f   Janssen %7.2f" % (y0, y0 + 0.25, sum(sel) / len(sel) / 1e3, jans / 1e3))
+            print("  y %.2f-%.2f m: wall %7.2f  particles %7.2f  Janssen %7.2f"
+                  % (y0, y0 + 0.25, sum(wall) / len(wall) / 1e3 if wall else float("nan"),
+                     sum(sel) / len(sel) / 1e3, jans / 1e3))
         y0 += 0.25
 
 
@@ -124,12 +141,12 @@ def main():
     for t, p in fr:
         tt = t - T_OPEN
         if abs(tt) < 2e-3:
-            wall_traction(read_vtu(p), "at rest, at the opening", h)
+            wall_traction(d, read_vtu(p), t, "at rest, at the opening", h)
         elif any(abs(tt - ti) < 2e-3 for ti in (0.25, 0.5, 0.75, 1.0, 1.25)):
             f = read_vtu(p)
             flow_pattern(f, tt, h)
             if abs(tt - 0.5) < 2e-3 or abs(tt - 1.25) < 2e-3:
-                wall_traction(f, "%.2f s after the opening" % tt, h)
+                wall_traction(d, f, t, "%.2f s after the opening" % tt, h)
 
 
 if __name__ == "__main__":

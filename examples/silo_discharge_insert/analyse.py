@@ -5,7 +5,7 @@ run wrote (Python 3 standard library only).
     python3 analyse.py silo_discharge_insert.out [cell size, default 0.02 m]
 
 Prints the discharge rate per 0.1 s window against Beverloo's law and the wall traction at rest (both
-as examples/silo_discharge/analyse.py), and the flow class over windows of the discharge: for the
+as examples/silo_discharge/analyse.py: the wall's own and the particles' next to it), and the flow class over windows of the discharge: for the
 points at a height z at the window's start, how far they sink by its end, next to the wall (r > 0.9
 m) against on the axis (r < 0.1 m), and the share of the cross-section that sinks by more than a
 tenth of the axis's drop. A time average: the instantaneous velocities of the viscoplastic continuum
@@ -14,10 +14,9 @@ are noisy. Mass flow: ratio near 1, share 1; funnel flow: both small. Runs witho
 import os, sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "retaining_wall"))
-from analyse import read_vtu as read_vtu_ids  # noqa: E402  (reads the integer arrays too: id)
+sys.path.insert(0, os.path.join(HERE, ".."))
+from frames import read_vtu as read_vtu_ids  # noqa: E402  (examples/frames.py reads the integer arrays too: id)
 sys.path[0] = os.path.join(HERE, "..", "silo_discharge")
-del sys.modules["analyse"]
 from analyse import T_OPEN, R, discharge_rate, frames, wall_traction  # noqa: E402
 
 WINDOWS = ((0.25, 0.8), (0.8, 1.4), (1.4, 2.0))
@@ -48,7 +47,7 @@ def main():
     fr = {round(t - T_OPEN, 3): p for t, p in frames(d)}
     discharge_rate(d)
     if 0.0 in fr:
-        wall_traction(read_vtu_ids(fr[0.0]), "at rest, at the opening", h)
+        wall_traction(d, read_vtu_ids(fr[0.0]), T_OPEN, "at rest, at the opening", h)
     print("flow class: drop over a window of the points at height z at its start (m); wall/axis; "
           "share of the section sinking")
     for t0, t1 in WINDOWS:

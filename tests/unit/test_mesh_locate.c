@@ -1,6 +1,7 @@
 /* Point location on unstructured grids: agreement with brute force (also in a hole and outside),
- * the walk from a hint cell, 1e6 random points all found, and the linear kind on unstructured
- * quads (isoparametric inverse map) and triangles. */
+ * the walk from a hint cell, 1e6 random points all found, the linear kind on unstructured
+ * quads (isoparametric inverse map) and triangles, and the inverse map of small quads far from the
+ * origin. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,6 +10,7 @@
 
 #include "shape_check.h"
 #include "mesh/mesh_internal.h"
+#include "shape/shape_internal.h"
 
 static int32_t brute(const pm_grid *g, const double x[2])
 {
@@ -119,6 +121,52 @@ static void linear_on_unstructured(void **state)
     }
 }
 
+/* Cells of 20 mm 3 m from the origin (a silo's wall near its top): the coordinates' rounding is
+ * then larger than 1e-14 of a cell, which a convergence test on the cell's size alone never reached.
+ * Points mapped forward from known (xi, eta) must come back to them, to 1e-9 (rounding of the
+ * coordinates, 5e-16, over the cell's 0.02 m half-width is 2e-14; a wrong root or an unconverged
+ * iteration is off by far more). */
+static void inverse_map_far_from_origin(void **state)
+{
+    (void)state;
+    for (int jit = 0; jit < 2; jit++) {
+        pm_grid g;
+        const int n = 12;
+        assert_int_equal(sc_jittered_grid(&g, n, PM_QUAD4, jit ? 0.4 : 0.0, 0.0, 41), 0);
+        for (size_t k = 0; k < g.n_nodes; k++) {
+            g.x[2 * k] = 0.7 + 0.02 * n * g.x[2 * k];
+            g.x[2 * k + 1] = 3.0 + 0.02 * n * g.x[2 * k + 1];
+        }
+        unsigned seed = 43;
+        for (size_t c = 0; c < g.n_cells; c++) {
+            const int32_t *v = g.conn + 4 * c;
+            for (int t = 0; t < 20; t++) {
+                const double xi0[2] = {-0.95 + 1.9 * sc_rnd(&seed), -0.95 + 1.9 * sc_rnd(&seed)};
+                static const double XI[4] = {-1, 1, 1, -1}, ETA[4] = {-1, -1, 1, 1};
+                double x[2] = {0, 0}, xi[2];
+                for (int q = 0; q < 4; q++) {
+                    const double w = 0.25 * (1 + XI[q] * xi0[0]) * (1 + ETA[q] * xi0[1]);
+                    x[0] += w * g.x[2 * v[q]];
+                    x[1] += w * g.x[2 * v[q] + 1];
+                }
+                assert_true(pm_quad4_inverse_map(&g, (int32_t)c, x, xi) >= 0);
+                assert_true(fabs(xi[0] - xi0[0]) < 1e-9 && fabs(xi[1] - xi0[1]) < 1e-9);
+                pm_stencil s;
+                assert_int_equal(pm_quad4_iso_eval(&g, (int32_t)c, x, &s), 0);
+                double pu = 0, gx = 0, gy = 0;
+                for (int q = 0; q < 4; q++) {
+                    pu += s.N[q];
+                    gx += s.dN[q][0];
+                    gy += s.dN[q][1];
+                }
+                /* partition of unity and its zero gradient, to rounding of N (1e-16) and dN (1e-14 / m) */
+                assert_true(fabs(pu - 1) < 1e-12 && fabs(gx) < 1e-9 && fabs(gy) < 1e-9);
+            }
+        }
+        pm_grid_free(&g);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -126,6 +174,7 @@ int main(void)
         cmocka_unit_test(walk_from_hint),
         cmocka_unit_test(million_points_all_found),
         cmocka_unit_test(linear_on_unstructured),
+        cmocka_unit_test(inverse_map_far_from_origin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
