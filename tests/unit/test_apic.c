@@ -9,7 +9,8 @@
  * field over each node's particles and misses by a good part of |A| h (3 / s x 0.1 m) at the boundary
  * (measured 0.10 m/s), which the test also checks (at least 1e-2), so that the tolerance is one that a
  * transfer without the affine part fails. Momentum is conserved to round-off
- * as for the other transfers (the affine part adds sum_I N_I (x_I - x_p) = 0 to it).
+ * as for the other transfers (the affine part adds sum_I N_I (x_I - x_p) = 0 to it). The loader refuses
+ * APIC where it has no meaning (another scheme, a meshfree method, a PIC share), naming the key.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -18,8 +19,11 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
+#include "pmech/case.h"
+#include "pmech/error.h"
 #include "pmech/material.h"
 #include "pmech/sim.h"
 #include "solver/sim_internal.h"
@@ -128,11 +132,52 @@ static void pic_loses_it(void **st)
     assert_true(err >= 1e-2);
 }
 
+/* A small case whose analysis object ends with `extra`, on method `method`. */
+static int load(const char *method, const char *extra)
+{
+    char buf[2048];
+    snprintf(buf, sizeof buf,
+             "{ \"dimension\": 2, \"method\": \"%s\",\n"
+             "  \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01%s },\n"
+             "  \"grid\": { \"type\": \"rectangle\", \"size\": [1, 1], \"cells\": [4, 4] },\n"
+             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,\n"
+             "                   \"youngs_modulus\": 1e6, \"poisson_ratio\": 0.3 } ],\n"
+             "  \"bodies\": [ { \"material\": \"m\",\n"
+             "                \"shape\": { \"type\": \"rectangle\", \"min\": [0, 0], \"max\": [1, 0.5] } } ] }\n",
+             method, extra);
+    pm_case c;
+    const int rc = pm_case_load_buffer(buf, strlen(buf), "case.json", &c);
+    if (rc == PM_OK)
+        assert_int_equal(c.analysis.transfer, strstr(extra, "apic") ? PM_TRANSFER_APIC : PM_TRANSFER_FLIP);
+    pm_case_free(&c);
+    return rc;
+}
+
+static void refused(const char *method, const char *extra, const char *key)
+{
+    assert_int_equal(load(method, extra), PM_EINPUT);
+    if (!strstr(pm_error_message(), key))
+        fail_msg("message \"%s\" lacks \"%s\"", pm_error_message(), key);
+}
+
+static void loader_checks(void **st)
+{
+    (void)st;
+    assert_int_equal(load("mpm", ""), PM_OK);
+    assert_int_equal(load("mpm", ", \"transfer\": \"apic\""), PM_OK);
+    assert_int_equal(load("mpm", ", \"transfer\": \"apic\", \"scheme\": \"musl\", \"flip\": 1"), PM_OK);
+    refused("mpm", ", \"transfer\": \"apic\", \"scheme\": \"usl\"", "analysis.transfer");
+    refused("gmm", ", \"transfer\": \"apic\"", "analysis.transfer");
+    refused("mpm", ", \"transfer\": \"apic\", \"flip\": 0.9", "analysis.flip");
+    refused("mpm", ", \"transfer\": \"tpic\"", "analysis.transfer");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(apic_keeps_affine_field),
         cmocka_unit_test(pic_loses_it),
+        cmocka_unit_test(loader_checks),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
