@@ -21,6 +21,10 @@ typedef struct pm_node_set {
     size_t n;          /**< number of nodes */
     int32_t *nodes;    /**< node indices */
     double normal[2];  /**< outward unit normal */
+    size_t n_edges;    /**< a Gmsh 1-D group on the mesh's boundary: its line elements (0 for other sets) */
+    int32_t *edges;    /**< 2 node indices per edge, each edge turned so that the element owning it lies on
+                            its left (the outward normal is its direction turned clockwise), the edges in
+                            chains: where one edge ends the next one starts, when the group allows it */
 } pm_node_set;
 
 /** A named set of cells: a 2-D physical group of a Gmsh mesh (for `gmsh_group` body shapes). */
@@ -109,7 +113,9 @@ int pm_grid_unstructured(pm_grid *g, size_t n_nodes, const double *x, size_t n_c
  * @brief Read a Gmsh mesh (MSH 4.1 ASCII) into an unstructured grid: 3-node triangles and
  *        4-node quads (a mesh with both has its quads split into two triangles). Every 1-D (and 0-D)
  *        physical group becomes a node set with the group's name (outward normal recorded when its
- *        nodes lie on one straight line), every 2-D physical group a cell set. Nodes used by no
+ *        nodes lie on one straight line; its line elements kept as pm_node_set::edges when every one
+ *        of them lies on the mesh's boundary, i.e. belongs to one element), every 2-D physical group a
+ *        cell set. Nodes used by no
  *        2-D element are dropped.
  * @param g grid to fill
  * @param path the .msh file

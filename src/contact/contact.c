@@ -40,7 +40,7 @@ void pm_contact_destroy(pm_contact *ct)
     free(ct);
 }
 
-static int add_surface(pm_contact *ct, size_t more_nodes, pm_contact_surface **out)
+int pm_contact_add_surface(pm_contact *ct, size_t more_nodes, pm_contact_surface **out)
 {
     pm_contact_surface *s = realloc(ct->surface, (ct->n_surfaces + 1) * sizeof *s);
     if (!s)
@@ -67,7 +67,7 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
                             pm_contact_law law, long bc)
 {
     pm_contact_surface *sf = NULL;
-    const int k = add_surface(ct, n, &sf);
+    const int k = pm_contact_add_surface(ct, n, &sf);
     if (k < 0)
         return k;
     sf->kind = PM_CONTACT_NODE_SET;
@@ -90,6 +90,7 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
         cn->mu = mu;
         cn->gap = 0.0;
         cn->held = 0;
+        cn->corner = 0;
     }
     ct->n_node = ct->n_fixed;
     return k;
@@ -99,7 +100,7 @@ int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double nor
                         pm_contact_law law, long bc, int guard)
 {
     pm_contact_surface *sf = NULL;
-    const int k = add_surface(ct, ct->n_nodes, &sf); /* room for every node: the list never grows in a step */
+    const int k = pm_contact_add_surface(ct, ct->n_nodes, &sf); /* room for every node: the list never grows in a step */
     if (k < 0)
         return k;
     sf->kind = PM_CONTACT_WALL;
@@ -137,6 +138,12 @@ static int node_set_surfaces(pm_contact *ct, const pm_case *c, pm_grid *g)
             continue;
         const pm_node_set *set;
         pm_check(pm_bc_node_set(c, b, g, &set));
+        if (set->n_edges) { /* a Gmsh group on the mesh's boundary: the normals of its edges */
+            const int k = pm_contact_add_edge_set(ct, g, set, bc->coefficient, PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
+            if (k < 0)
+                return k;
+            continue;
+        }
         int given = 0;
         for (int d = 0; d < PM_DIM; d++)
             given |= set->normal[d] != 0;
@@ -222,7 +229,7 @@ int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double w
         return pm_error_set(PM_ENOMEM, "out of memory for the obstacles");
     ct->points = pts;
     pm_contact_surface *sf = NULL;
-    const int i = add_surface(ct, ct->n_nodes, &sf); /* room for every node: the list never grows in a step */
+    const int i = pm_contact_add_surface(ct, ct->n_nodes, &sf); /* room for every node: the list never grows in a step */
     if (i < 0)
         return i;
     sf->obstacle = (long)k;

@@ -4,7 +4,8 @@
  * interface; none of them holds a contact list of its own.
  *
  * Life of a contact object (one per simulation, pm_sim::contact, destroyed with it):
- *   pm_contact_create   from the case: every `friction` condition becomes a surface; with gmm and
+ *   pm_contact_create   from the case: every `friction` condition becomes a surface (on a Gmsh group
+ *                       on the mesh's boundary, a wall of its edges with a normal per node: edges.c); with gmm and
  *                       rkpm a `fixed` grid side that holds its normal component becomes a guard wall
  *                       as well (nodes that reach the side later are stopped there: it sticks when the
  *                       tangent is held too, slides freely otherwise); every obstacles[] entry
@@ -12,7 +13,7 @@
  *   pm_contact_detect   at the start of every step (pm_sim_update_constraints): the obstacles are
  *                       moved to their place at time t (displacement = the exact integral of their
  *                       velocity functions), and the candidate nodes found. A node-set surface (an
- *                       MPM grid side or line) keeps the nodes it had at t = 0; the other surfaces
+ *                       MPM grid side or line, or a Gmsh wall) keeps the nodes it had at t = 0; the other surfaces
  *                       take the nodes within pm_contact::reach of them, so that moving meshfree
  *                       nodes and moving obstacles meet as they move. Each entry holds the normal
  *                       into the surface at the node. A box around each surface (its points, disk
@@ -110,8 +111,17 @@ typedef enum pm_contact_kind {
     /** A rigid closed polygon with the material outside. */
     PM_CONTACT_POLYGON = 3,
     /** A rigid disk with the material outside. */
-    PM_CONTACT_CIRCLE = 4
+    PM_CONTACT_CIRCLE = 4,
+    /** A Gmsh 1-D group on the mesh's boundary (edges.c): a fixed set of nodes as PM_CONTACT_NODE_SET,
+     *  each with the normal of its edges; its geometry is its edges, 2 points each in
+     *  pm_contact::points, the material on their left. */
+    PM_CONTACT_EDGES = 5
 } pm_contact_kind;
+
+/** Two edges of a Gmsh wall meeting at a node whose normals differ by more than this many degrees make a
+ *  corner there: each edge keeps its own normal (edges.c). Curves meshed finer than this (a circle in 13
+ *  edges or more) have a smooth normal at every node. */
+#define PM_CONTACT_CORNER_DEG 30.0
 
 /** Resultant force of one surface on the material over the last pm_contact_apply(). */
 typedef struct pm_contact_force {
@@ -165,6 +175,9 @@ typedef struct pm_contact_node {
     int held;                /**< 1: the nodal law acted on it in this step's pm_contact_apply() (reset by
                                   pm_contact_detect()) */
     double vn_held;          /**< then: its normal velocity relative to the surface after the law */
+    int corner;              /**< 1: the node is a Gmsh wall's re-entrant corner (a tool's tip), whose normal
+                                  is that of the face the nearest material lies squarely off, chosen by
+                                  every pm_contact_gaps() */
 } pm_contact_node;
 
 /** The surfaces of a simulation and the nodes touching them. */
@@ -217,8 +230,25 @@ int pm_contact_create(const pm_case *c, pm_grid *g, const pm_grid *frame, pm_con
 /** An empty contact object for a field of @p n_nodes nodes (surfaces are added to it). */
 int pm_contact_new(size_t n_nodes, pm_contact **out);
 
+/** A new surface (zeroed, no bc or obstacle) with room for @p more_nodes more entries in
+ *  pm_contact::node. @return its index, or a negative status */
+int pm_contact_add_surface(pm_contact *ct, size_t more_nodes, pm_contact_surface **out);
+
 /** Add a node-set surface; its nodes touch it from now on. @return its index, or a negative status */
 int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, const double normal[PM_DIM], double mu,
+                            pm_contact_law law, long bc);
+
+/**
+ * Add the wall of a Gmsh 1-D group @p set of @p g (its pm_node_set::edges, not empty): its nodes touch it
+ * from now on, each with the outward normal of its edges, the two edges' normals weighted by the
+ * inverse of their lengths (exact on a circle) where they turn by less than PM_CONTACT_CORNER_DEG. At a
+ * sharper corner where the material's domain turns inwards (a corner of a bin), the node has two
+ * entries, one per edge's normal; where it turns outwards (a tool's tip in the material), one entry
+ * whose normal pm_contact_gaps() takes from the face the nearest material lies off. A node of one edge
+ * only (the group's end, or one of two coincident nodes at a tip) has that edge's normal.
+ * @return its index, or a negative status
+ */
+int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set *set, double mu,
                             pm_contact_law law, long bc);
 
 /** Add a wall axis = value; detection finds its nodes. @return its index, or a negative status */

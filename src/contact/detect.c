@@ -33,6 +33,7 @@ static void place_box(const pm_contact *ct, pm_contact_surface *sf, const pm_gri
         break;
     case PM_CONTACT_POLYLINE:
     case PM_CONTACT_POLYGON:
+    case PM_CONTACT_EDGES:
         for (size_t q = 0; q < sf->n_points; q++)
             for (int d = 0; d < PM_DIM; d++) {
                 const double x = ct->points[PM_DIM * (sf->first_point + q) + d] + sf->shift[d];
@@ -93,6 +94,7 @@ static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
         cn->mu = sf->mu;
         cn->gap = sd;
         cn->held = 0;
+        cn->corner = 0;
     }
 }
 
@@ -109,7 +111,7 @@ void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
         pm_contact_surface *sf = &ct->surface[k];
         place(sf, t);
         place_box(ct, sf, g);
-        if (sf->kind != PM_CONTACT_NODE_SET)
+        if (sf->kind != PM_CONTACT_NODE_SET && sf->kind != PM_CONTACT_EDGES)
             near_nodes(ct, (int32_t)k, g);
     }
 }
@@ -161,10 +163,19 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
                 wmax = st.N[j];
         for (int j = 0; wmax > 0 && j < st.n; j++) {
             const int32_t e = ct->slot[st.node[j]];
-            if (e >= 0 && st.N[j] >= VOTE * wmax && gap < ct->node[e].gap)
+            if (e >= 0 && st.N[j] >= VOTE * wmax && gap < ct->node[e].gap) {
                 ct->node[e].gap = gap;
+                /* a tool's tip pushes the material along the face it lies off (seed 004 §5.3.2) */
+                if (ct->node[e].corner)
+                    for (int d = 0; d < PM_DIM; d++)
+                        ct->node[e].normal[d] = n[d];
+            }
         }
     }
+    /* a node held by both faces of a corner has two entries side by side, and the slot named the last */
+    for (size_t e = last; e-- > first + 1;)
+        if (ct->node[e - 1].node == ct->node[e].node)
+            ct->node[e - 1].gap = ct->node[e].gap;
     for (size_t e = first; e < last; e++)
         ct->slot[ct->node[e].node] = -1;
 }

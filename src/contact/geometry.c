@@ -1,6 +1,6 @@
 /*
- * Where a surface is: the signed distance of a point to a plane, a polyline, a polygon or a circle
- * placed at its position of the last detection, and the unit normal pointing into it (contact.h).
+ * Where a surface is: the signed distance of a point to a plane, a polyline, a polygon, a circle or
+ * a Gmsh wall's edges placed at its position of the last detection, and the unit normal pointing into it (contact.h).
  */
 #include "contact/contact.h"
 
@@ -46,11 +46,14 @@ static double chain(const pm_contact *ct, const pm_contact_surface *sf, const do
 #error "polylines and polygons are 2-D: their normals are the segments' in-plane normals"
 #endif
     const double *pts = ct->points + PM_DIM * sf->first_point;
-    const size_t np = sf->n_points, nseg = sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
+    /* a Gmsh wall's edges are pairs of points, every end a corner (or a smooth joint, which the sharp
+     * rule gives the same distance) */
+    const int pairs = sf->kind == PM_CONTACT_EDGES;
+    const size_t np = sf->n_points, nseg = pairs ? np / 2 : sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
     double best = INFINITY, best_depth = 0, q_best[2] = {0, 0}, m_best[2] = {0, 1};
     int inside = 0, at_corner = 0;
     for (size_t k = 0; k < nseg; k++) {
-        const double *a0 = pts + 2 * k, *b0 = pts + 2 * ((k + 1) % np);
+        const double *a0 = pts + 2 * (pairs ? 2 * k : k), *b0 = pairs ? a0 + 2 : pts + 2 * ((k + 1) % np);
         const double a[2] = {a0[0] + sf->shift[0], a0[1] + sf->shift[1]};
         const double b[2] = {b0[0] + sf->shift[0], b0[1] + sf->shift[1]};
         const double e[2] = {b[0] - a[0], b[1] - a[1]}, L2 = dot2(e, e);
@@ -68,8 +71,8 @@ static double chain(const pm_contact *ct, const pm_contact_surface *sf, const do
             q_best[0] = q[0], q_best[1] = q[1];
             m_best[0] = m[0], m_best[1] = m[1];
             /* a polyline's two free ends are no corners */
-            at_corner = (s <= 0 && (sf->kind == PM_CONTACT_POLYGON || k > 0)) ||
-                        (s >= 1 && (sf->kind == PM_CONTACT_POLYGON || k + 1 < nseg));
+            at_corner = (s <= 0 && (pairs || sf->kind == PM_CONTACT_POLYGON || k > 0)) ||
+                        (s >= 1 && (pairs || sf->kind == PM_CONTACT_POLYGON || k + 1 < nseg));
         }
         /* even-odd rule for the polygon's inside */
         if (sf->kind == PM_CONTACT_POLYGON && ((a[1] > x[1]) != (b[1] > x[1])) &&
@@ -101,7 +104,8 @@ double pm_contact_distance(const pm_contact *ct, const pm_contact_surface *sf, c
     switch (sf->kind) {
     case PM_CONTACT_CIRCLE: return circle(sf, x, n);
     case PM_CONTACT_POLYLINE:
-    case PM_CONTACT_POLYGON: return chain(ct, sf, x, n);
+    case PM_CONTACT_POLYGON:
+    case PM_CONTACT_EDGES: return chain(ct, sf, x, n);
     default: return plane(sf, x, n);
     }
 }

@@ -34,17 +34,37 @@ static void straight_tangent(const pm_contact_surface *sf, double t[PM_DIM])
         t[0] = -t[0], t[1] = -t[1];
 }
 
-/* Polyline or polygon: the arc length of the point of the chain nearest to x, and the chain's unit
+/* Segments of a chain: a polyline's np - 1, a polygon's np (the last closes it), a Gmsh wall's edges
+ * (pairs of points, in their chains: the arc length runs along each chain, one after the other). */
+static size_t n_segments(const pm_contact_surface *sf)
+{
+    const size_t np = sf->n_points;
+    return sf->kind == PM_CONTACT_EDGES ? np / 2 : sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
+}
+
+static void segment(const pm_contact *ct, const pm_contact_surface *sf, size_t k, const double **a, const double **b)
+{
+    const double *pts = ct->points + PM_DIM * sf->first_point;
+    if (sf->kind == PM_CONTACT_EDGES) {
+        *a = pts + PM_DIM * 2 * k;
+        *b = *a + PM_DIM;
+    } else {
+        *a = pts + PM_DIM * k;
+        *b = pts + PM_DIM * ((k + 1) % sf->n_points);
+    }
+}
+
+/* Polyline, polygon or Gmsh wall: the arc length of the point of the chain nearest to x, and the chain's unit
  * direction there. */
 static double chain_position(const pm_contact *ct, const pm_contact_surface *sf, const double x[PM_DIM],
                              double t[PM_DIM])
 {
-    const double *pts = ct->points + PM_DIM * sf->first_point;
-    const size_t np = sf->n_points, nseg = sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
+    const size_t nseg = n_segments(sf);
     double best = INFINITY, at = 0, walked = 0;
     t[0] = 0, t[1] = 1;
     for (size_t k = 0; k < nseg; k++) {
-        const double *a = pts + PM_DIM * k, *b = pts + PM_DIM * ((k + 1) % np);
+        const double *a, *b;
+        segment(ct, sf, k, &a, &b);
         const double e[2] = {b[0] - a[0], b[1] - a[1]}, len = sqrt(dot(e, e));
         const double r[2] = {x[0] - a[0] - sf->shift[0], x[1] - a[1] - sf->shift[1]};
         double u = dot(r, e) / (len * len);
@@ -63,10 +83,10 @@ static double chain_position(const pm_contact *ct, const pm_contact_surface *sf,
 /* The point of a chain at arc length s (its last point beyond the end). */
 static void chain_point(const pm_contact *ct, const pm_contact_surface *sf, double s, double x[PM_DIM])
 {
-    const double *pts = ct->points + PM_DIM * sf->first_point;
-    const size_t np = sf->n_points, nseg = sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
+    const size_t nseg = n_segments(sf);
     for (size_t k = 0; k < nseg; k++) {
-        const double *a = pts + PM_DIM * k, *b = pts + PM_DIM * ((k + 1) % np);
+        const double *a, *b;
+        segment(ct, sf, k, &a, &b);
         const double len = hypot(b[0] - a[0], b[1] - a[1]);
         if (s <= len || k + 1 == nseg) {
             const double u = len > 0 ? fmin(s / len, 1.0) : 0.0;
@@ -84,12 +104,13 @@ double pm_contact_length(const pm_contact *ct, size_t k, const pm_grid *g)
     switch (sf->kind) {
     case PM_CONTACT_CIRCLE: return 2 * M_PI * sf->radius;
     case PM_CONTACT_POLYLINE:
-    case PM_CONTACT_POLYGON: {
-        const double *pts = ct->points + PM_DIM * sf->first_point;
-        const size_t np = sf->n_points, nseg = sf->kind == PM_CONTACT_POLYGON ? np : np - 1;
+    case PM_CONTACT_POLYGON:
+    case PM_CONTACT_EDGES: {
+        const size_t nseg = n_segments(sf);
         double L = 0;
         for (size_t q = 0; q < nseg; q++) {
-            const double *a = pts + PM_DIM * q, *b = pts + PM_DIM * ((q + 1) % np);
+            const double *a, *b;
+            segment(ct, sf, q, &a, &b);
             L += hypot(b[0] - a[0], b[1] - a[1]);
         }
         return L;

@@ -146,8 +146,13 @@ int pm_case_parse_bcs(pm_case *c, json_t *bcs)
                 return pm_case_fail(c->file, bp, "both components are null: give at least one velocity", NULL);
         } else {
             pm_check(jr_only_keys(&cx, b, pm_case_keys(PM_KEYS_BC_FRICTION)));
-            pm_check(jr_number(&cx, b, "coefficient", JR_REQUIRED, 0, &bc->coefficient));
-            pm_check(jr_range(&cx, "coefficient", bc->coefficient, 0, 0, INFINITY, 0));
+            json_t *mu = json_object_get(b, "coefficient");
+            if (json_is_string(mu) && !strcmp(json_string_value(mu), "no_slip")) {
+                bc->coefficient = INFINITY; /* the laws then keep no slip at all, as for obstacles */
+            } else {
+                pm_check(jr_number(&cx, b, "coefficient", JR_REQUIRED, 0, &bc->coefficient));
+                pm_check(jr_range(&cx, "coefficient", bc->coefficient, 0, 0, INFINITY, 0));
+            }
         }
     }
     return PM_OK;

@@ -12,9 +12,10 @@
  * the contact impulses not yet logged, the output schedule, the probes, the picture ranges, the state
  * of forces.csv, and the byte length of every log file, which a restart cuts back to before appending.
  *
- * Covered: method mpm with every shape function but lme (whose per-particle Lagrange multipliers are a
- * warm start kept inside the approximation), analysis explicit, implicit and quasi_static, with or
- * without contact_pairs, but not a strength reduction. pm_checkpoint_covers() says why anything else is not.
+ * Covered: methods mpm (with lme, each particle's kept stencil and Lagrange multipliers: checkpoint_lme.h),
+ * gmm (mls, lme) and rkpm, whose node cloud is stored with what rebuilds its cell list exactly
+ * (checkpoint_meshfree.h); analysis explicit, implicit and quasi_static, with or without contact_pairs,
+ * but not a strength reduction. pm_checkpoint_covers() says why.
  */
 #ifndef PMECH_IO_CHECKPOINT_H
 #define PMECH_IO_CHECKPOINT_H
@@ -28,6 +29,10 @@
 
 /** The file's name in the output directory. */
 #define PM_CHECKPOINT_NAME "checkpoint.h5"
+
+/** The layout's version (attribute `format_version`): 2 added /meshfree and /lme, 3 /particles/C (APIC's
+ *  affine matrix); a restart reads only its own. */
+#define PM_CHECKPOINT_FORMAT 3
 
 /** What the time loop of pm_run() carries from step to step besides the simulation. */
 typedef struct pm_run_loop {
@@ -76,6 +81,12 @@ int pm_checkpoint_case_hash(const char *path, uint64_t *hash);
  * @return PM_OK, or PM_EINPUT naming what is not covered and why
  */
 int pm_checkpoint_covers(const pm_sim *s);
+
+/**
+ * @brief Whether @p s runs the grid kind lme, whose per-particle stencils a checkpoint stores (/lme).
+ * @return 1 or 0
+ */
+int pm_checkpoint_grid_lme(const pm_sim *s);
 
 /**
  * @brief Write @p dir/checkpoint.h5 atomically (checkpoint.h5.tmp, synced, renamed); the logs are

@@ -1,6 +1,8 @@
 /* Reading DIR/checkpoint.h5 back into a run (checkpoint.h; the layout is docs/checkpoint.md). */
 #include "io/checkpoint.h"
 #include "io/checkpoint_h5.h"
+#include "io/checkpoint_lme.h"
+#include "io/checkpoint_meshfree.h"
 #include "io/output_internal.h"
 
 #include "contact/contact.h"
@@ -86,7 +88,10 @@ static int check_identity(pm_checkpoint *ck, const pm_sim *s)
     if (strcmp(text, PMECH_VERSION))
         return pm_error_set(PM_EINPUT, "%s was written by pmech %s; this is pmech %s, which continues only its own "
                             "checkpoints (run the case again from the start)", ck->path, text, PMECH_VERSION);
-    int32_t dim = 0;
+    int32_t fmt = 0, dim = 0;
+    if (ck_attr_read(f, f->id, "format_version", CK_INT32, &fmt) || fmt != PM_CHECKPOINT_FORMAT)
+        return pm_error_set(PM_EINPUT, "%s has layout version %d; this pmech reads version %d only (run the case "
+                            "again from the start)", ck->path, (int)fmt, PM_CHECKPOINT_FORMAT);
     pm_check(ck_attr_read(f, f->id, "dim", CK_INT32, &dim));
     if (dim != PM_DIM)
         return pm_error_set(PM_EINPUT, "%s holds a %d-D run; this pmech is built for %d-D", ck->path, (int)dim, PM_DIM);
@@ -277,6 +282,16 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
     return rc;
 }
 
+static int read_meshfree(pm_checkpoint *ck, hid_t g, void *arg)
+{
+    return pm_ck_read_meshfree(&ck->f, g, arg);
+}
+
+static int read_lme(pm_checkpoint *ck, hid_t g, void *arg)
+{
+    return pm_ck_read_lme(&ck->f, g, arg);
+}
+
 static int read_run(pm_checkpoint *ck, hid_t g, void *arg)
 {
     pm_run_loop *l = arg;
@@ -302,6 +317,10 @@ int pm_checkpoint_restore_state(pm_checkpoint *ck, pm_sim *s, pm_run_loop *loop,
         pm_check(in_group(ck, "flow", read_flow, s));
     if (s->contact)
         pm_check(in_group(ck, "contact", read_contact, s));
+    if (s->mf)
+        pm_check(in_group(ck, "meshfree", read_meshfree, s));
+    if (pm_checkpoint_grid_lme(s))
+        pm_check(in_group(ck, "lme", read_lme, s->approx));
     pm_check(in_group(ck, "run", read_run, loop));
     int32_t stored = 0;
     pm_check(ck_attr_read(&ck->f, ck->f.id, "threads", CK_INT32, &stored));

@@ -1,6 +1,8 @@
 /* Writing DIR/checkpoint.h5 (checkpoint.h; the layout is docs/checkpoint.md). */
 #include "io/checkpoint.h"
 #include "io/checkpoint_h5.h"
+#include "io/checkpoint_lme.h"
+#include "io/checkpoint_meshfree.h"
 #include "io/output_internal.h"
 
 #include "contact/contact.h"
@@ -49,19 +51,15 @@ int pm_checkpoint_case_hash(const char *path, uint64_t *hash)
 
 int pm_checkpoint_covers(const pm_sim *s)
 {
-    const pm_case *c = s->c;
-    if (c->method != PM_METHOD_MPM)
-        return pm_error_set(PM_EINPUT, "checkpoints cover method mpm only: %s moves its node cloud with the "
-                            "material, which a checkpoint does not store yet",
-                            c->method == PM_METHOD_GMM ? "gmm" : "rkpm");
-    if (!strcmp(s->approx->ops->name, "lme"))
-        return pm_error_set(PM_EINPUT, "checkpoints do not cover shape_function lme: its Lagrange multipliers "
-                            "are kept per particle as the next evaluation's starting point, so a continued run "
-                            "would differ in the last digits");
-    if (c->analysis.strength_reduction.enabled)
+    if (s->c->analysis.strength_reduction.enabled)
         return pm_error_set(PM_EINPUT, "a strength reduction is a search of many runs: it cannot be continued "
                             "from a checkpoint");
     return PM_OK;
+}
+
+int pm_checkpoint_grid_lme(const pm_sim *s)
+{
+    return !s->mf && !strcmp(s->approx->ops->name, "lme");
 }
 
 static int put_double(const ck_file *f, hid_t loc, const char *name, double v)
@@ -92,7 +90,7 @@ static int write_top(const ck_file *f, hid_t g, const pm_ck_run *r)
 {
     char hash[24];
     snprintf(hash, sizeof hash, "%016llx", (unsigned long long)r->case_hash);
-    const int32_t fmt = 1, dim = PM_DIM, threads = r->threads;
+    const int32_t fmt = PM_CHECKPOINT_FORMAT, dim = PM_DIM, threads = r->threads;
     pm_check(ck_attr_write_string(f, g, "format", "pmech checkpoint"));
     pm_check(ck_attr_write(f, g, "format_version", CK_INT32, &fmt));
     pm_check(ck_attr_write_string(f, g, "pmech_version", PMECH_VERSION));
@@ -232,6 +230,16 @@ static int write_multibody(const ck_file *f, hid_t g, const pm_ck_run *r)
     return ck_write(f, g, "pair_impulse", CK_DOUBLE, mb->pair_impulse, nf * nf, PM_DIM);
 }
 
+static int write_meshfree(const ck_file *f, hid_t g, const pm_ck_run *r)
+{
+    return pm_ck_write_meshfree(f, g, r->s);
+}
+
+static int write_lme(const ck_file *f, hid_t g, const pm_ck_run *r)
+{
+    return pm_ck_write_lme(f, g, r->s->approx);
+}
+
 static int write_run(const ck_file *f, hid_t g, const pm_ck_run *r)
 {
     const pm_run_loop *l = r->loop;
@@ -346,6 +354,10 @@ static int write_all(const ck_file *f, const pm_ck_run *r)
         pm_check(in_group(f, "contact", write_contact, r));
     if (r->s->mb)
         pm_check(in_group(f, "multibody", write_multibody, r));
+    if (r->s->mf)
+        pm_check(in_group(f, "meshfree", write_meshfree, r));
+    if (pm_checkpoint_grid_lme(r->s))
+        pm_check(in_group(f, "lme", write_lme, r));
     pm_check(in_group(f, "run", write_run, r));
     pm_check(in_group(f, "output", write_output, r));
     return in_group(f, "logs", write_logs, r);

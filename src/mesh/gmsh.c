@@ -1,7 +1,9 @@
 /*
  * Gmsh meshes to grids: the parsed file (gmsh_read.c) becomes an unstructured grid of one element
  * kind (a mesh of triangles and quads becomes all triangles, each quad split in two), its 2-D physical
- * groups cell sets, its 1-D and 0-D groups node sets with the outward normal of a straight one.
+ * groups cell sets, its 1-D and 0-D groups node sets with the outward normal of a straight one, and a
+ * 1-D group on the mesh's boundary keeps its line elements, turned to have their element on the left
+ * and put in chains, so that a wall on it can take its normals and its shape from them.
  */
 #include "mesh/gmsh_internal.h"
 
@@ -86,6 +88,89 @@ static void line_normal(const pm_grid *g, const int32_t *nodes, size_t n, int32_
             return;
         }
     }
+}
+
+/* The cells around every node (compressed rows): which element owns an edge of a 1-D group. */
+typedef struct node_cells {
+    int32_t *start; /* n_nodes + 1 */
+    int32_t *cell;
+} node_cells;
+
+static int node_cells_build(const pm_grid *g, node_cells *nc)
+{
+    const int npc = g->nodes_per_cell;
+    nc->start = calloc(g->n_nodes + 1, sizeof *nc->start);
+    nc->cell = malloc(((size_t)npc * g->n_cells + 1) * sizeof *nc->cell);
+    if (!nc->start || !nc->cell)
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    for (size_t k = 0; k < (size_t)npc * g->n_cells; k++)
+        nc->start[g->conn[k] + 1]++;
+    for (size_t n = 0; n < g->n_nodes; n++)
+        nc->start[n + 1] += nc->start[n];
+    int32_t *fill = malloc((g->n_nodes + 1) * sizeof *fill);
+    if (!fill)
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    memcpy(fill, nc->start, g->n_nodes * sizeof *fill);
+    for (size_t c = 0; c < g->n_cells; c++)
+        for (int k = 0; k < npc; k++)
+            nc->cell[fill[g->conn[(size_t)npc * c + k]]++] = (int32_t)c;
+    free(fill);
+    return PM_OK;
+}
+
+/* Turn every edge (a, b) of a group so that the one element owning it lies on its left (the grid's
+ * cells run counter-clockwise, so the owner lists b right after a), then put the edges in chains.
+ * Returns 0 when an edge has no owner or two (a line inside the mesh has no outward side). */
+static int orient_edges(const pm_grid *g, const node_cells *nc, int32_t *e, size_t ne, int32_t *next_of)
+{
+    const int npc = g->nodes_per_cell;
+    for (size_t q = 0; q < ne; q++) {
+        const int32_t a = e[2 * q], b = e[2 * q + 1];
+        int owners = 0, flip = 0;
+        for (int32_t i = nc->start[a]; i < nc->start[a + 1]; i++) {
+            const int32_t *v = g->conn + (size_t)npc * (size_t)nc->cell[i];
+            for (int k = 0; k < npc; k++) {
+                const int32_t p = v[k], r = v[(k + 1) % npc];
+                if (p == a && r == b)
+                    owners++;
+                else if (p == b && r == a)
+                    owners++, flip = 1;
+            }
+        }
+        if (owners != 1)
+            return 0;
+        if (flip)
+            e[2 * q] = b, e[2 * q + 1] = a;
+    }
+    /* chains: start at the edges nothing leads into (open ends), then whatever closed loops are left;
+     * each node leads on to the edge that starts there */
+    int32_t *tmp = malloc((2 * ne + 1) * sizeof *tmp);
+    uint8_t *done = calloc(ne + 1, 1);
+    uint8_t *led = calloc(g->n_nodes + 1, 1);
+    if (!tmp || !done || !led) {
+        free(tmp), free(done), free(led);
+        return -1;
+    }
+    for (size_t q = 0; q < ne; q++) {
+        next_of[e[2 * q]] = (int32_t)q;
+        led[e[2 * q + 1]] = 1;
+    }
+    size_t out = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t q0 = 0; q0 < ne; q0++) {
+            if (done[q0] || (pass == 0 && led[e[2 * q0]]))
+                continue;
+            for (int32_t q = (int32_t)q0; q >= 0 && !done[q]; q = next_of[e[2 * q + 1]]) {
+                done[q] = 1;
+                tmp[2 * out] = e[2 * q], tmp[2 * out + 1] = e[2 * q + 1];
+                out++;
+            }
+        }
+    memcpy(e, tmp, 2 * ne * sizeof *e);
+    for (size_t q = 0; q < ne; q++)
+        next_of[e[2 * q]] = -1;
+    free(tmp), free(done), free(led);
+    return 1;
 }
 
 /* Build the grid from the parsed file. */
@@ -187,6 +272,16 @@ static int build(pm_grid *g, const pm_msh *m, const char *path)
         }
     }
     /* 1-D and 0-D physical groups -> node sets */
+    node_cells nc = {NULL, NULL};
+    int32_t *next_of = NULL;
+    if (m->n_line && !rc) {
+        rc = node_cells_build(g, &nc);
+        next_of = malloc((g->n_nodes + 1) * sizeof *next_of);
+        if (!rc && !next_of)
+            rc = pm_error_set(PM_ENOMEM, "out of memory");
+        for (size_t n = 0; !rc && n < g->n_nodes; n++)
+            next_of[n] = -1;
+    }
     for (int dim = 1; dim >= 0 && !rc; dim--) {
         /* every distinct (dim, physical tag) */
         for (size_t ie = 0; ie < m->n_ent && !rc; ie++) {
@@ -208,11 +303,13 @@ static int build(pm_grid *g, const pm_msh *m, const char *path)
                 const int *ents = dim == 1 ? m->line_ent : m->pt_ent;
                 const int npe = dim == 1 ? 2 : 1;
                 int32_t *nodes = malloc((ne * (size_t)npe + 1) * sizeof(int32_t));
-                if (!nodes) {
+                int32_t *pairs = malloc((ne * (size_t)npe + 1) * sizeof(int32_t));
+                if (!nodes || !pairs) {
+                    free(nodes), free(pairs);
                     rc = pm_error_set(PM_ENOMEM, "out of memory");
                     break;
                 }
-                size_t cnt = 0;
+                size_t cnt = 0, npairs = 0;
                 int32_t ea = -1, eb = -1;
                 for (size_t e = 0; e < ne; e++) {
                     const pm_msh_entity *ee = find_entity(m, dim, ents[e]);
@@ -234,6 +331,11 @@ static int build(pm_grid *g, const pm_msh *m, const char *path)
                         ea = loc[0];
                         eb = loc[1];
                     }
+                    if (dim == 1 && ok && loc[0] != loc[1]) {
+                        pairs[2 * npairs] = loc[0];
+                        pairs[2 * npairs + 1] = loc[1];
+                        npairs++;
+                    }
                 }
                 qsort(nodes, cnt, sizeof(int32_t), cmp_i32);
                 size_t u = 0;
@@ -249,9 +351,21 @@ static int build(pm_grid *g, const pm_msh *m, const char *path)
                 free(nodes);
                 if (k < 0)
                     rc = k;
+                const int on_boundary = k >= 0 && npairs ? orient_edges(g, &nc, pairs, npairs, next_of) : 0;
+                if (on_boundary < 0)
+                    rc = pm_error_set(PM_ENOMEM, "out of memory");
+                if (on_boundary > 0) {
+                    g->sets[k].edges = pairs;
+                    g->sets[k].n_edges = npairs;
+                    pairs = NULL;
+                }
+                free(pairs);
             }
         }
     }
+    free(nc.start);
+    free(nc.cell);
+    free(next_of);
     if (rc)
         pm_grid_free(g);
 done:

@@ -49,7 +49,8 @@ void pm_msh_free(pm_msh *m);
 /**
  * Refuse 2-D elements that would make a wrong grid without failing later (gmsh_check.c): an element
  * with a repeated node, zero area or (quads) corners that do not all turn the same way; two elements
- * with the same nodes; two elements on the same side of one edge (overlapping); two nodes at one point.
+ * with the same nodes; two elements on the same side of one edge (overlapping); two nodes at one point
+ * unless both are nodes of line elements (the two sides of a slit).
  * Returns PM_OK, PM_ENOMEM, or PM_EINPUT naming @p path and the element tags (or node tags).
  */
 int pm_msh_check_elements(const pm_msh *m, const char *path);

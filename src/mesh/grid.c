@@ -16,8 +16,10 @@ void pm_grid_free(pm_grid *g)
     free(g->cell_sets);
     free(g->x);
     free(g->conn);
-    for (size_t i = 0; i < g->n_sets; i++)
+    for (size_t i = 0; i < g->n_sets; i++) {
         free(g->sets[i].nodes);
+        free(g->sets[i].edges);
+    }
     free(g->sets);
     memset(g, 0, sizeof *g);
 }

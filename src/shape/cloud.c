@@ -188,6 +188,25 @@ int pm_cloud_update(pm_cloud *c, int *rebuilt)
     return need ? pm_cloud_rebuild(c) : PM_OK;
 }
 
+int pm_cloud_restore(pm_cloud *c, const double *x, const double *x_built, double cell, size_t n_builds)
+{
+    if (!(cell > 0) || !isfinite(cell))
+        return pm_error_set(PM_EINPUT, "cloud: cell side %g", cell);
+    /* the cell side of that build already fitted its positions: pm_cloud_rebuild() keeps it, so lo,
+     * nc and the order come out as they were */
+    c->cell = cell;
+    memcpy(c->x, x_built, PM_DIM * c->n * sizeof *c->x);
+    pm_check(pm_cloud_rebuild(c));
+    memcpy(c->x, x, PM_DIM * c->n * sizeof *c->x);
+    int rebuilt = 0;
+    pm_check(pm_cloud_update(c, &rebuilt));
+    c->n_builds = n_builds;
+    if (rebuilt)
+        return pm_error_set(PM_EINPUT, "cloud: a node moved farther than the skin %g since the stored build",
+                            c->skin);
+    return PM_OK;
+}
+
 /* cell_coord() with a multiplication by 1 / cell instead of a division (see scan()) */
 static inline int cell_coord_mul(const pm_cloud *c, double v, int k, double inv)
 {

@@ -83,6 +83,24 @@ int pm_cloud_rebuild(pm_cloud *c);
 int pm_cloud_update(pm_cloud *c, int *rebuilt);
 
 /**
+ * @brief Put a cloud back into a state it had (a checkpoint): the positions @p x_built of its last
+ *        build, binned with cell side @p cell, then the current positions @p x handed to the queries.
+ *
+ * The cell list's order (a stable counting sort by node index) is a function of the built positions
+ * and the cell side alone, so the restored list, and with it the order of every neighbour list and
+ * shape-function sum, is the one the cloud had; @p n_builds is the count it had (candidate lists are
+ * tagged with it).
+ * @param c the cloud, with as many nodes as the state
+ * @param x current positions, 2 per node
+ * @param x_built positions at the last build, 2 per node
+ * @param cell cell side of the last build (m, > 0)
+ * @param n_builds builds so far
+ * @return PM_OK; PM_EINPUT for a non-finite position or cell side, or positions that moved farther
+ *         than the skin since @p x_built (no cloud is left in that state after pm_cloud_update())
+ */
+int pm_cloud_restore(pm_cloud *c, const double *x, const double *x_built, double cell, size_t n_builds);
+
+/**
  * @brief All nodes I with |x_I - x| < r (positions as of the last pm_cloud_update() or
  *        pm_cloud_rebuild()), in no particular order.
  *

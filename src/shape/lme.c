@@ -38,6 +38,7 @@
  */
 #include "pmech/approx.h"
 #include "pmech/error.h"
+#include "shape/lme_state.h"
 
 #include "shape_internal.h"
 
@@ -541,3 +542,14 @@ const pm_approx_ops pm_approx_lme_ops = {
     .destroy = lme_destroy,
     .init = lme_init,
 };
+
+int pm_lme_state_get(const pm_approx *a, pm_lme_state *st)
+{
+    if (!a || a->ops != &pm_approx_lme_ops || !a->data)
+        return pm_error_set(PM_EINPUT, "pm_lme_state_get: '%s' is not the grid kind lme",
+                            a ? a->ops->name : "(null)");
+    lme_cache *c = &((lme_data *)a->data)->cache;
+    *st = (pm_lme_state){.cap = c->cap, .n_nodes = a->grid->n_nodes, .width = c->width, .xs = c->xs,
+                         .lam = c->lam, .n = c->n, .node = c->node, .N = c->N, .dN = c->dN};
+    return PM_OK;
+}

@@ -41,6 +41,9 @@
 #define MF_DEFAULT_MIN_NODES 6
 #define MF_DEFAULT_LME_MIN_NODES 3
 #define MF_DEFAULT_LME_EXTRA 8
+/* a widened stencil cache leaves room beyond the longest stencil, so that it is not widened again at
+ * the next step (every widening restarts the LME lambdas) */
+#define MF_SLOT_EXTRA 4
 
 /* ---- the approximation --------------------------------------------------------------------- */
 
@@ -267,7 +270,7 @@ static int mf_connect(pm_approx *a, pm_particles *p)
     int longest;
     pm_check(cache_fill(a, p, &bad, &longest));
     if (bad == LONG_MAX && (size_t)longest > md->cache.slot) {
-        pm_check(cache_alloc(&md->cache, md, p->n, (size_t)longest + 4));
+        pm_check(cache_alloc(&md->cache, md, p->n, (size_t)longest + MF_SLOT_EXTRA));
         pm_check(cache_fill(a, p, &bad, &longest));
     }
     if (bad != LONG_MAX) {
@@ -350,6 +353,38 @@ int pm_meshfree_eval_node(const pm_approx *a, size_t node, pm_stencil *s)
     if (rc != PM_OK)
         lam[0] = lam[1] = 0;
     return rc;
+}
+
+int pm_meshfree_state_get(const pm_approx *a, pm_meshfree_state *st)
+{
+    if (!pm_approx_is_meshfree(a))
+        return pm_error_set(PM_EINPUT, "pm_meshfree_state_get: '%s' is not a meshfree approximation",
+                            a ? a->ops->name : "(null)");
+    const mf_data *md = a->data;
+    const int lme = md->kind == MF_LME;
+    *st = (pm_meshfree_state){.n_points = md->cache.n, .slot = md->cache.slot, .n_nodes = md->cloud->n};
+    if (lme) {
+        st->key = md->cache.key;
+        st->lam = md->cache.lam;
+        st->node_lam = md->node_lam;
+    }
+    return PM_OK;
+}
+
+int pm_meshfree_state_resize(pm_approx *a, size_t n_points, size_t slot)
+{
+    if (!pm_approx_is_meshfree(a))
+        return pm_error_set(PM_EINPUT, "pm_meshfree_state_resize: '%s' is not a meshfree approximation",
+                            a ? a->ops->name : "(null)");
+    mf_data *md = a->data;
+    if (n_points == 0) {
+        cache_free(&md->cache);
+        return PM_OK;
+    }
+    if (slot < 1 || slot > PM_STENCIL_MAX + MF_SLOT_EXTRA)
+        return pm_error_set(PM_EINPUT, "meshfree stencils of %zu entries (1 to %d)", slot,
+                            PM_STENCIL_MAX + MF_SLOT_EXTRA);
+    return cache_alloc(&md->cache, md, n_points, slot);
 }
 
 pm_meshfree_opts pm_meshfree_opts_default(void)

@@ -107,6 +107,41 @@ int pm_meshfree_eval(const pm_approx *a, const double x[2], pm_stencil *s);
 int pm_meshfree_eval_node(const pm_approx *a, size_t node, pm_stencil *s);
 
 /**
+ * What a meshfree approximation keeps from one connect() to the next that its shape functions depend
+ * on, besides the cloud itself (pm_cloud_restore()): a checkpoint stores it. The candidate lists are
+ * not part of it: a list only answers a query the cell list would answer with the same nodes in the
+ * same order.
+ */
+typedef struct pm_meshfree_state {
+    size_t n_points;  /**< points of the stencil cache (0: none made yet) */
+    size_t slot;      /**< stencil entries per point: a connect() that meets a longer stencil widens the
+                           cache, and a widened cache starts every point's lambda afresh */
+    double *key;      /**< lme: PM_DIM per point, where it was last evaluated (NAN: never); else NULL */
+    double *lam;      /**< lme: PM_DIM per point, the lambda found there, the start of its next solve;
+                           else NULL */
+    size_t n_nodes;   /**< nodes of the cloud */
+    double *node_lam; /**< lme: PM_DIM per node, the lambda of its last pm_meshfree_eval_node(); else NULL */
+} pm_meshfree_state;
+
+/**
+ * @brief The state of @p a, as pointers into it (valid until the next connect() or resize).
+ * @param a an approximation from pm_approx_create_cloud()
+ * @param st receives the state
+ * @return PM_OK, or PM_EINPUT for another kind
+ */
+int pm_meshfree_state_get(const pm_approx *a, pm_meshfree_state *st);
+
+/**
+ * @brief Make the stencil cache of @p a hold @p n_points points of @p slot entries, every point not
+ *        yet evaluated (lambda 0), to be filled with a stored state through pm_meshfree_state_get().
+ * @param a an approximation from pm_approx_create_cloud()
+ * @param n_points points (0: no cache)
+ * @param slot entries per point, 1 to PM_STENCIL_MAX + 4 (the most a connect() gives)
+ * @return PM_OK, PM_EINPUT for another kind or a slot out of range, PM_ENOMEM
+ */
+int pm_meshfree_state_resize(pm_approx *a, size_t n_points, size_t slot);
+
+/**
  * @brief The cubic spline of seed 002 eq. 40: 2/3 - 4z^2 + 4z^3 on [0, 1/2],
  *        4/3 - 4z + 4z^2 - 4z^3/3 on [1/2, 1], 0 beyond (z >= 0).
  * @param z normalised distance |d| / a

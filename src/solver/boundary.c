@@ -51,9 +51,21 @@ int pm_bc_node_set(const pm_case *c, size_t b, pm_grid *g, const pm_node_set **o
                                 "%s: boundary_conditions[%zu].boundary: '%s': with method rkpm the nodes are the "
                                 "particles, so only the grid sides x_min, x_max, y_min, y_max name boundaries",
                                 c->file, b, bc->boundary);
-        if (!set)
-            return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no boundary '%s' in the grid",
+        if (!set && pm_grid_find_cell_set(g, bc->boundary))
+            return pm_error_set(PM_EINPUT,
+                                "%s: boundary_conditions[%zu].boundary: '%s' is a 2-D physical group of the mesh "
+                                "(its cells); a boundary is a 1-D group (its lines), a 0-D one or a grid side",
                                 c->file, b, bc->boundary);
+        if (!set) {
+            char names[512] = "";
+            size_t used = 0;
+            for (size_t k = 0; k < g->n_sets && used + 1 < sizeof names; k++) {
+                const int w = snprintf(names + used, sizeof names - used, "%s%s", k ? ", " : "", g->sets[k].name);
+                used += w > 0 ? (size_t)w : 0;
+            }
+            return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no boundary '%s' in the grid "
+                                "(it has: %s)", c->file, b, bc->boundary, names);
+        }
     }
     if (set->n == 0)
         return pm_error_set(PM_EINPUT, "%s: boundary_conditions[%zu].boundary: no node lies on '%s' at t = 0",

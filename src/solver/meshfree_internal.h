@@ -49,6 +49,10 @@ int pm_mf_after_explicit(pm_sim *s, double dt, const double *vel);
 /* End of an implicit step: move the nodes by du and keep v, a at the nodes for the next predictor. */
 int pm_mf_after_implicit(pm_sim *s, const double *du, const double *v, const double *a);
 
+/* After a checkpoint put the cloud back (src/io/checkpoint_meshfree.c): the Lambda rows evaluated at the
+ * restored nodes, as the end of the step that wrote it left them. */
+int pm_mf_restored(pm_sim *s);
+
 /* Implicit predictor: the nodes' own v, a from the last step where they have them. */
 void pm_mf_nodal_history(const pm_sim *s, double *vn, double *an);
 

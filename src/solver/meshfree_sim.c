@@ -300,6 +300,15 @@ static int nodes_moved(pm_sim *s)
     return PM_OK;
 }
 
+int pm_mf_restored(pm_sim *s)
+{
+    pm_mf *mf = s->mf;
+    for (int c = 0; c < 2; c++)
+        if (mf->kd[c])
+            pm_check(pm_kd_update(mf->kd[c], s->approx));
+    return PM_OK;
+}
+
 /*
  * GMM nodes move with the material: by the interpolated field at their own position,
  * sum_J N_J(x_I) d_J, not by their coefficient d_I. The two differ by O(h^2 grad^2 u) for

@@ -4,8 +4,9 @@
 # output file (frames, pictures, pvd, every CSV log) as the same run never stopped; cmp decides, nothing is
 # tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
 # implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), two
-# bodies in contact (contact_pairs). What is not covered (GMM, another
-# case, a damaged file) is refused with exit 2.
+# bodies in contact (contact_pairs), MPM with LME (each particle's kept stencil), GMM with MLS and with
+# LME, RKPM, implicit GMM (the node cloud, its cell list, the nodes' velocity and acceleration history). What is not covered (a strength reduction, another case, a
+# damaged file) is refused with exit 2.
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
@@ -37,6 +38,7 @@ stop_and_continue() {
   kill -"$sig" $pid; wait $pid; rc=$?
   check "$name: SIG$sig stops the run mid-way (exit $rc)" [ $rc -eq "$code" ]
   check "$name: a checkpoint was written" [ -f "$name.part/checkpoint.h5" ]
+  cp "$name.part/checkpoint.h5" "$name.stop.h5" 2>/dev/null
   "$PMECH" run "$name.json" --restart "$name.part" --quiet --threads $threads >/dev/null 2>err.txt
   rc=$?
   check "$name: the restart runs to the end (exit $rc)" [ $rc -eq 0 ]
@@ -81,11 +83,26 @@ json.dump(c, open("periodic.json", "w"), indent=1)
 c = json.load(open(src + "/tests/verification/cases/block_drop.json"))
 c["output"] = {"interval": c["analysis"]["end_time"] / 50}
 json.dump(c, open("contact_pairs.json", "w"), indent=1)
-# GMM moves its node cloud with the material, which a checkpoint does not hold: refused
-c = json.load(open(src + "/examples/column_collapse/case_gmm_mls.json"))
-c["analysis"]["end_time"] = 0.01
-c["output"] = {}
-json.dump(c, open("gmm.json", "w"), indent=1)
+# GMM (MLS, LME) and RKPM: the node cloud moves with the material and its cell list is rebuilt as nodes
+# move past the skin; the column collapse on a coarse grid, long enough for rebuilds on both sides of the
+# stop. RKPM's nodes are its particles, with Kronecker-delta rows on the fixed sides.
+for name, method, shape in (("gmm_mls", "gmm", "mls"), ("gmm_lme", "gmm", "lme"), ("rkpm", "rkpm", "rk_cubic")):
+    c = json.load(open(src + "/examples/column_collapse/case_gmm_mls.json"))
+    c["method"], c["shape_function"] = method, shape
+    c["analysis"]["end_time"] = 0.3 if method == "rkpm" else 0.6  # RKPM's steps are twice as many
+    c["grid"]["cells"] = [30, 21]
+    c["output"] = {"interval": 0.02}
+    json.dump(c, open(name + ".json", "w"), indent=1)
+# implicit GMM: the Dyka bar with its nodes keeping their velocity and acceleration for the next predictor
+c = json.load(open("implicit.json"))
+c["method"], c["shape_function"] = "gmm", "mls"
+c["analysis"]["end_time"] = 0.05
+json.dump(c, open("implicit_gmm.json", "w"), indent=1)
+# MPM with lme: each particle keeps its last stencil and lambda, the start of the next evaluation
+c = json.load(open("musl_mc.json"))
+c["shape_function"] = "lme"
+c["output"] = {"interval": 0.02}
+json.dump(c, open("mpm_lme.json", "w"), indent=1)
 PY
 # two threads: the colour blocks of the parallel scatter decide the order of additions into shared nodes
 stop_and_continue musl_mc INT particles_000004.vtu 130 2
@@ -94,6 +111,17 @@ stop_and_continue implicit INT particles_000005.vtu 130
 stop_and_continue implicit_friction INT particles_000004.vtu 130
 stop_and_continue contact_pairs INT particles_000010.vtu 130
 stop_and_continue periodic KILL particles_000016.vtu 137
+stop_and_continue mpm_lme INT particles_000012.vtu 130 2
+# the meshfree runs, with the number of cell-list builds: some before the stop and more after it, so the
+# continued run goes on from a restored cell list and rebuilds it as the uninterrupted run did
+builds() { h5dump -a /meshfree/builds "$1" 2>/dev/null | sed -n 's/.*(0): \([0-9]*\).*/\1/p'; }
+for m in gmm_mls:12 gmm_lme:12 rkpm:08 implicit_gmm:10; do
+  frame=${m#*:}; m=${m%:*}
+  stop_and_continue $m INT particles_0000$frame.vtu 130 2
+  b0=$(builds $m.stop.h5); b1=$(builds $m.full/checkpoint.h5)
+  check "$m: the cell list was rebuilt before the stop (${b0:-?} builds) and after it (${b1:-?})" \
+    [ "${b0:-0}" -gt 1 -a "${b1:-0}" -gt "${b0:-0}" ]
+done
 
 # ---- the layout of docs/checkpoint.md, read by HDF5's own h5dump (hdf5-tools)
 n=$(python3 -c "import json; print(json.load(open('musl_mc.full/run.json'))['particles'])")
@@ -118,8 +146,8 @@ expect_refusal "no checkpoint" "there is no checkpoint.h5" "$PMECH" run musl_mc.
 head -c 3000 musl_mc.part/checkpoint.h5 > cut.h5 && mv cut.h5 musl_mc.part/checkpoint.h5
 expect_refusal "a damaged checkpoint" "checkpoint.h5" "$PMECH" run musl_mc.json --restart musl_mc.part --quiet
 check "a damaged checkpoint: the outputs are untouched" same_outputs kept.part musl_mc.part
-"$PMECH" run gmm.json -o gmm.out --quiet >/dev/null 2>&1
-expect_refusal "gmm" "method mpm only" "$PMECH" run gmm.json --restart gmm.out --quiet
+expect_refusal "a strength reduction" "a strength reduction is a search of many runs" \
+  "$PMECH" run "$SRC/examples/slope_fos/case.json" --restart empty.dir --quiet
 expect_refusal "--restart with -o elsewhere" "cannot name another directory" \
   "$PMECH" run musl_mc.json --restart musl_mc.part -o other.out --quiet
 

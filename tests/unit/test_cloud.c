@@ -4,7 +4,8 @@
  * for query points inside and outside the cloud's box; the skin rule (no rebuild while every node
  * moved at most the skin, a rebuild as soon as one moved more, correct answers in both cases,
  * also for nodes that left the box of the last build); the adaptive radius of seed 000 section
- * 5.3; and the error paths. */
+ * 5.3; a cloud put back from a stored state (positions, positions at the last build, cell side)
+ * holding the very cell list of the cloud it was stored from; and the error paths. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -221,6 +222,72 @@ static void adaptive_radius(void **state)
     free(x);
 }
 
+/* Nodes drift by at most 0.8 skin per move, a node far out once makes the rebuild enlarge the cell
+ * side; then a second cloud, created from the starting positions as a restarted run creates it, is
+ * given the first one's positions, positions at the last build and cell side: its cell list must be
+ * the first one's bit for bit (bounds, offsets, node order, the positions the queries scan), so that
+ * queries return the same nodes in the same order. Positions farther than the skin from the stored
+ * build are refused. */
+static void restore_gives_the_same_cell_list(void **state)
+{
+    (void)state;
+    unsigned seed = 31;
+    const size_t n = 1200;
+    double *x0 = malloc(2 * n * sizeof *x0);
+    assert_non_null(x0);
+    for (size_t i = 0; i < n; i++) {
+        x0[2 * i] = 2 * rnd(&seed);
+        x0[2 * i + 1] = rnd(&seed);
+    }
+    pm_cloud *a, *b;
+    assert_int_equal(pm_cloud_create(n, x0, NULL, NULL, &a), PM_OK);
+    const double cell0 = a->cell;
+    for (int step = 0; step < 40; step++) {
+        for (size_t i = 0; i < n; i++) {
+            const double t = 2 * M_PI * rnd(&seed);
+            a->x[2 * i] += 0.8 * a->skin * cos(t);
+            a->x[2 * i + 1] += 0.8 * a->skin * sin(t);
+        }
+        if (step == 20) /* far enough that the cells of the box would outnumber the nodes 4 to 1 */
+            a->x[0] = 400.0;
+        assert_int_equal(pm_cloud_update(a, NULL), PM_OK);
+    }
+    assert_true(a->n_builds > 10);
+    assert_true(a->cell > cell0); /* enlarged at the far node's rebuild */
+    assert_int_equal(pm_cloud_create(n, x0, NULL, NULL, &b), PM_OK);
+    assert_int_equal(pm_cloud_restore(b, a->x, a->x_built, a->cell, a->n_builds), PM_OK);
+    assert_true(b->cell == a->cell && b->n_builds == a->n_builds);
+    assert_true(b->lo[0] == a->lo[0] && b->lo[1] == a->lo[1]);
+    assert_true(b->nc[0] == a->nc[0] && b->nc[1] == a->nc[1]);
+    assert_memory_equal(b->start, a->start, ((size_t)a->nc[0] * (size_t)a->nc[1] + 1) * sizeof *a->start);
+    assert_memory_equal(b->order, a->order, n * sizeof *a->order);
+    assert_memory_equal(b->x_built, a->x_built, 2 * n * sizeof *a->x_built);
+    assert_memory_equal(b->x_sorted, a->x_sorted, 2 * n * sizeof *a->x_sorted);
+    assert_memory_equal(b->x, a->x, 2 * n * sizeof *a->x);
+    int32_t ia[256], ib[256];
+    for (int q = 0; q < 200; q++) {
+        const double p[2] = {2 * rnd(&seed), rnd(&seed)};
+        int na, nb;
+        assert_int_equal(pm_cloud_query(a, p, 3 * a->h, 256, ia, NULL, &na), PM_OK);
+        assert_int_equal(pm_cloud_query(b, p, 3 * b->h, 256, ib, NULL, &nb), PM_OK);
+        assert_int_equal(na, nb);
+        assert_true(na <= 256);
+        assert_memory_equal(ia, ib, (size_t)na * sizeof *ia);
+    }
+    /* a node 1.5 skin away from where it was built: not a state any update leaves */
+    double *moved = malloc(2 * n * sizeof *moved);
+    assert_non_null(moved);
+    memcpy(moved, a->x_built, 2 * n * sizeof *moved);
+    moved[2 * 5] += 1.5 * a->skin;
+    assert_int_equal(pm_cloud_restore(b, moved, a->x_built, a->cell, a->n_builds), PM_EINPUT);
+    assert_non_null(strstr(pm_error_message(), "farther than the skin"));
+    assert_int_equal(pm_cloud_restore(b, moved, a->x_built, 0.0, a->n_builds), PM_EINPUT);
+    free(moved);
+    pm_cloud_destroy(a);
+    pm_cloud_destroy(b);
+    free(x0);
+}
+
 static void bad_input(void **state)
 {
     (void)state;
@@ -247,6 +314,7 @@ int main(void)
         cmocka_unit_test(matches_brute_force),
         cmocka_unit_test(skin_rule),
         cmocka_unit_test(adaptive_radius),
+        cmocka_unit_test(restore_gives_the_same_cell_list),
         cmocka_unit_test(bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,0 +1,135 @@
+/*
+ * A block sliding down a slope that is the boundary of a Gmsh mesh, not aligned with the axes: the
+ * mesh (cases/gmsh_incline<deg>.msh, from cases/make_gmsh_incline.py) is a strip of triangles above a
+ * straight line at 25 or 35 degrees whose line elements are the 1-D physical group "slope", written
+ * half of them backwards; a `friction` condition on that group (mu = 0.3) takes its normals from the
+ * edges (away from the triangles that own them) and its gaps from the material's surface. Rigid-body
+ * answer while it slides: the mean velocity along the slope g (sin(theta) - mu cos(theta)) t, compared
+ * within 2 % at 0.2 s as for the rigid polyline (verify_incline): a wall whose normal were the mesh's
+ * edge turned the wrong way, or held a cell early, or frictionless, is off by far more (at 35 degrees
+ * frictionless is +76 %). At 10 degrees, below the friction angle (16.7 degrees), it must stay put: its
+ * travel along the slope below 1 % of the frictionless g sin(theta) t^2 / 2. The slope's own force
+ * (the laws' impulses summed over its nodes, mean over the second half, as forces.csv writes it)
+ * against the statics of the rigid block within 2 % as in verify_incline: normal W cos(theta),
+ * tangential mu W cos(theta) while sliding and W sin(theta) while stuck.
+ */
+#include "verify_util.h"
+
+#include "contact/contact.h"
+#include "pmech/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double G = 9.81, MU = 0.3, T_END = 0.2;
+/* weight of the 0.2 m x 0.06 m block of density 1000 per unit thickness */
+static const double W = 1000 * 0.2 * 0.06 * 9.81;
+static const char *dir = ".";
+
+/* The case: the mesh's slope runs from (0, 0.4) down to the right; the block's bottom lies on it from
+ * s = 0.1 to 0.3 along it. */
+static void make_case(int deg, pm_case *c)
+{
+    const double th = deg * M_PI / 180.0, y0 = 0.4, BW = 0.2, H = 0.06, s0 = 0.1;
+    const double e[2] = {cos(th), -sin(th)}, n[2] = {sin(th), cos(th)};
+    const double p0[2] = {s0 * e[0], y0 + s0 * e[1]};
+    double q[4][2];
+    for (int k = 0; k < 4; k++) {
+        const double a = (k == 1 || k == 2) ? BW : 0.0, b = k >= 2 ? H : 0.0;
+        q[k][0] = p0[0] + a * e[0] + b * n[0];
+        q[k][1] = p0[1] + a * e[1] + b * n[1];
+    }
+    char text[4096], path[1024];
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": %g,"
+             "  \"cfl\": 0.3, \"gravity\": [0, %g] },"
+             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline%d.msh\" },"
+             "  \"materials\": [ { \"name\": \"block\", \"model\": \"linear_elastic\", \"density\": 1000,"
+             "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"block\", \"material\": \"block\", \"particles_per_cell\": 2,"
+             "    \"shape\": { \"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]] } } ],"
+             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"slope\", \"coefficient\": %g } ] }",
+             T_END, -G, deg, q[0][0], q[0][1], q[1][0], q[1][1], q[2][0], q[2][1], q[3][0], q[3][1], MU);
+    snprintf(path, sizeof path, "%s/cases/gmsh_incline.json", dir);
+    if (pm_case_load_buffer(text, strlen(text), path, c) != PM_OK) {
+        fprintf(stderr, "%s\n", pm_error_message());
+        exit(2);
+    }
+}
+
+/* Run to T_END: the mean velocity along the slope, the travel of the centre of mass along it, and the
+ * slope's mean normal and tangential force on the block over the second half. */
+static int run(int deg, double *v_along, double *travel, double force[2], double *secs)
+{
+    pm_case c;
+    make_case(deg, &c);
+    const double th = deg * M_PI / 180.0, e[2] = {cos(th), -sin(th)};
+    const double t0 = vu_now();
+    pm_sim *s = vu_sim(&c, 1);
+    if (s->contact->n_surfaces != 1 || s->contact->surface[0].kind != PM_CONTACT_EDGES) {
+        fprintf(stderr, "%d deg: the slope is not a wall of mesh edges\n", deg);
+        exit(1);
+    }
+    double v[2], x0[2], x[2];
+    vu_body_mean(s, 0, v, x0);
+    int ok = 1, reset = 0;
+    double t_reset = 0;
+    while (ok && s->t < T_END - 1e-12) {
+        if (!reset && s->t >= 0.5 * T_END) {
+            memset(&s->contact->surface[0].impulse, 0, sizeof s->contact->surface[0].impulse);
+            t_reset = s->t;
+            reset = 1;
+        }
+        double dt = vu_dt(s);
+        if (s->t + dt > T_END)
+            dt = T_END - s->t;
+        if (pm_explicit_step(s, dt) != PM_OK) {
+            fprintf(stderr, "%d deg: %s\n", deg, pm_error_message());
+            ok = 0;
+        }
+    }
+    vu_body_mean(s, 0, v, x);
+    *v_along = v[0] * e[0] + v[1] * e[1];
+    *travel = (x[0] - x0[0]) * e[0] + (x[1] - x0[1]) * e[1];
+    const pm_contact_force *J = &s->contact->surface[0].impulse;
+    force[0] = J->normal / (s->t - t_reset);
+    force[1] = hypot(J->tangent[0], J->tangent[1]) / (s->t - t_reset);
+    *secs = vu_now() - t0;
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+    return ok;
+}
+
+int main(int argc, char **argv)
+{
+    vu_init(argc, argv);
+    if (argc > 1)
+        dir = argv[1];
+    int ok = 1;
+    const int slides[] = {25, 35};
+    for (size_t k = 0; k < sizeof slides / sizeof slides[0]; k++) {
+        const double th = slides[k] * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * T_END;
+        double v, u, f[2], secs;
+        ok &= run(slides[k], &v, &u, f, &secs);
+        char q[112];
+        snprintf(q, sizeof q, "%d deg Gmsh slope, mu 0.3: velocity along the slope at 0.2 s (m/s)", slides[k]);
+        ok &= vu_report("gmsh_incline", q, v, ref, (v - ref) / ref, 0.02, secs);
+        const double fn = W * cos(th);
+        snprintf(q, sizeof q, "%d deg: slope's normal force (N/m), mean over 0.1-0.2 s", slides[k]);
+        ok &= vu_report("gmsh_incline", q, f[0], fn, (f[0] - fn) / fn, 0.02, secs);
+        snprintf(q, sizeof q, "%d deg: slope's friction force (N/m), mean over 0.1-0.2 s", slides[k]);
+        ok &= vu_report("gmsh_incline", q, f[1], MU * fn, (f[1] - MU * fn) / (MU * fn), 0.02, secs);
+    }
+    const double th = 10.0 * M_PI / 180.0, free_dist = 0.5 * G * sin(th) * T_END * T_END;
+    double v, u, f[2], secs;
+    ok &= run(10, &v, &u, f, &secs);
+    ok &= vu_report("gmsh_incline", "10 deg Gmsh slope, mu 0.3 (sticks): travel / frictionless travel",
+                    u / free_dist, 0.0, u / free_dist, 0.01, secs);
+    ok &= vu_report("gmsh_incline", "10 deg: slope's normal force (N/m), mean over 0.1-0.2 s", f[0], W * cos(th),
+                    f[0] / (W * cos(th)) - 1, 0.02, secs);
+    ok &= vu_report("gmsh_incline", "10 deg: slope's friction force (N/m), mean over 0.1-0.2 s", f[1], W * sin(th),
+                    f[1] / (W * sin(th)) - 1, 0.02, secs);
+    return ok ? 0 : 1;
+}
