@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Run-out study of planar cohesionless column collapses against the laws of Lube et al. (2005).
 
-    python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--flip 1.0] [--fbar] [--jobs 2] [--keep]
+    python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--cells-y 32] [--flip 1.0] [--fbar]
+                     [--transfer apic] [--material '{"key": value}'] [--jobs 2] [--keep]
 
 For every aspect ratio a = H / L0 and mesh (cells per column width L0 = 1 m) it writes a case from
 case.json (the column, the grid and the end time scaled with a), runs it with one thread, and
 measures the final deposit from the last frame: the front (the particles' x sorted, up to the first
 gap wider than 2 h), the farthest particle, the height at the wall (largest y within h of it), the
-largest volume ratio V / V0, the front's advance over the last 10 % of the run, and two measures
+largest volume ratio V / V0, the deposit's volume over the column's, the front's advance over the last 10 % of the run, and two measures
 of the deposit's body that converge where the front does not: where the deposit is 0.1 L0 deep and
 how far the centre of mass moved. Prints one markdown row per run and writes study.csv.
 
@@ -95,18 +96,23 @@ def centre_x(vtu):
     return sum(m[i] * pts[3 * i] for i in range(n)) / sum(m)
 
 
-def make_case(base, a, cells, flip, fbar=False):
+def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, cells_y=None):
     c = copy.deepcopy(base)
     if fbar:
         c["analysis"]["fbar"] = "cell"
+    if transfer:
+        c["analysis"]["transfer"] = transfer
+    if material:
+        c["materials"][0].update(material)
     L0, h = 1.0, 1.0 / cells
+    hy = 1.0 / cells_y if cells_y else h
     H = a * L0
     reach = law_runout(a) + 1.0
     width = max(1.6 * reach + 0.5, 3.0)
     height = H + 0.5
-    c["title"] = "granular column a = %g, h = L0/%d" % (a, cells)
-    c["grid"]["cells"] = [math.ceil(width / h), math.ceil(height / h)]
-    c["grid"]["size"] = [c["grid"]["cells"][0] * h, c["grid"]["cells"][1] * h]
+    c["title"] = "granular column a = %g, h = L0/%d" % (a, cells) + (", h_y = L0/%d" % cells_y if cells_y else "")
+    c["grid"]["cells"] = [math.ceil(width / h), math.ceil(height / hy)]
+    c["grid"]["size"] = [c["grid"]["cells"][0] * h, c["grid"]["cells"][1] * hy]
     body = c["bodies"][0]
     body["shape"]["max"] = [L0, H]
     body["surface_y"] = H
@@ -119,12 +125,13 @@ def make_case(base, a, cells, flip, fbar=False):
     return c
 
 
-def run_one(pmech, work, a, cells, flip, keep, fbar=False):
-    name = "a%g_h%d%s" % (a, cells, "_fbar" if fbar else "")
+def run_one(pmech, work, a, cells, flip, keep, fbar=False, transfer=None, material=None, cells_y=None):
+    name = "a%g_h%d%s%s%s" % (a, cells, "_y%d" % cells_y if cells_y else "", "_fbar" if fbar else "",
+                              "_" + transfer if transfer else "")
     d = work / name
     d.mkdir(parents=True, exist_ok=True)
     base = json.loads((HERE / "case.json").read_text())
-    case = make_case(base, a, cells, flip, fbar)
+    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y)
     (d / "case.json").write_text(json.dumps(case, indent=1))
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
     t0 = time.time()
@@ -139,12 +146,13 @@ def run_one(pmech, work, a, cells, flip, keep, fbar=False):
     front_before = deposit(before, h)[0]
     body = thick_point(last, 0.1) - 1.0
     dx_cm = centre_x(last) - centre_x(fr[0][1])
-    vol, v0 = arr.get("volume"), (h * h) / 4
+    vol, v0 = arr.get("volume"), (h * (1.0 / cells_y if cells_y else h)) / 4
     jmax = max(vol) / v0 if vol else float("nan")
-    row = dict(a=a, cells=cells, t_end=t_end, end_time=case["analysis"]["end_time"], ok=proc.returncode == 0,
+    vdep = sum(vol) / (a * 1.0 * 1.0) if vol else float("nan")
+    row = dict(a=a, cells=cells, cells_y=cells_y or cells, t_end=t_end, end_time=case["analysis"]["end_time"], ok=proc.returncode == 0,
                runout=front - 1.0, law_runout=law_runout(a), body=body, dx_cm=dx_cm, height=hw,
                law_height=law_height(a),
-               stray=xmax / front, creep=front - front_before, jmax=jmax, seconds=secs,
+               stray=xmax / front, creep=front - front_before, jmax=jmax, vdep=vdep, seconds=secs,
                message=(proc.stderr.strip().splitlines() or ["exit %d" % proc.returncode])[-1] if proc.returncode else "")
     if not keep:
         shutil.rmtree(d / "out", ignore_errors=True)
@@ -156,8 +164,12 @@ def main():
     ap.add_argument("pmech")
     ap.add_argument("--aspect", default="0.5,1,2,4,8")
     ap.add_argument("--cells", default="10,20")
+    ap.add_argument("--cells-y", type=int, default=None,
+                    help="cells per L0 vertically (flat cells); default: as --cells")
     ap.add_argument("--flip", type=float, default=None)
     ap.add_argument("--fbar", action="store_true", help="analysis.fbar = cell")
+    ap.add_argument("--transfer", default=None, help="analysis.transfer (flip or apic)")
+    ap.add_argument("--material", default=None, help="JSON object of material keys to set")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default="study.out")
     ap.add_argument("--keep", action="store_true")
@@ -167,15 +179,16 @@ def main():
     runs = [(float(a), int(n)) for n in o.cells.split(",") for a in o.aspect.split(",")]
     rows = []
     with concurrent.futures.ThreadPoolExecutor(o.jobs) as ex:
-        futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep, o.fbar) for a, n in runs]
+        futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep, o.fbar, o.transfer,
+                          json.loads(o.material) if o.material else None, o.cells_y) for a, n in runs]
         for f in concurrent.futures.as_completed(futs):
             r = f.result()
             rows.append(r)
-            print("a = %g, L0/h = %d: run-out %.3f (law %.3f, %+.1f %%), 0.1 L0 deep at %.3f, centre of mass "
-                  "moved %.3f m, height %.3f (law %.3f, %+.1f %%), farthest/front %.3f, creep %.3f, J max %.1f, "
-                  "%s, %.0f s" %
-                  (r["a"], r["cells"], r["runout"], r["law_runout"], 100 * (r["runout"] / r["law_runout"] - 1),
-                   r["body"], r["dx_cm"],
+            print("a = %g, L0/h = %d, L0/h_y = %d: run-out %.3f (law %.3f, %+.1f %%), 0.1 L0 deep at %.3f, centre of mass "
+                  "moved %.3f m, V/V0 %.3f, height %.3f (law %.3f, %+.1f %%), farthest/front %.3f, creep %.3f, "
+                  "J max %.1f, %s, %.0f s" %
+                  (r["a"], r["cells"], r["cells_y"], r["runout"], r["law_runout"], 100 * (r["runout"] / r["law_runout"] - 1),
+                   r["body"], r["dx_cm"], r["vdep"],
                    r["height"], r["law_height"], 100 * (r["height"] / r["law_height"] - 1), r["stray"], r["creep"],
                    r["jmax"], "finished" if r["ok"] else "STOPPED: " + r["message"], r["seconds"]), flush=True)
     rows.sort(key=lambda r: (r["a"], r["cells"]))

@@ -37,6 +37,11 @@ typedef enum {
     PM_FBAR_NONE = 0,  /**< every particle keeps its own volume change */
     PM_FBAR_CELL = 1   /**< F-bar: the volume change averaged over each background cell (Coombs et al. 2018) */
 } pm_fbar_mode;
+/** How particle velocities go to the grid and back in explicit MPM (analysis.transfer). */
+typedef enum {
+    PM_TRANSFER_FLIP = 0, /**< FLIP with an optional PIC share (analysis.flip) */
+    PM_TRANSFER_APIC = 1  /**< affine particle-in-cell: velocity plus a per-particle velocity gradient */
+} pm_transfer;
 /** When a trial factor of a strength reduction counts as failed (analysis.strength_reduction.criterion). */
 typedef enum {
     PM_SRF_CONVERGENCE = 0,  /**< the run cannot apply the full gravity: Newton fails after every step cut */
@@ -216,6 +221,7 @@ typedef struct pm_case {
         double gravity_ramp_time;
         double damping;
         double pic;               /**< MUSL: PIC share of the particle velocity update, 1 - the key flip (0: FLIP) */
+        pm_transfer transfer;     /**< MUSL: FLIP/PIC or APIC particle-grid transfer */
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */

@@ -50,6 +50,8 @@ typedef struct pm_particles {
     double *eps_p;     /**< equivalent plastic strain */
     double *state;     /**< material history, n_state per particle */
     double *hsize;     /**< initial half-size of the particle's domain (x, y), 2 per particle */
+    double *C;         /**< APIC's affine velocity matrix (row-major velocity gradient of the last grid-to-particle
+                            transfer), PM_DIM x PM_DIM per particle; zero with other transfers */
     int32_t *material; /**< index into the case's material list */
     int32_t *body;     /**< index into the case's body list */
     int32_t *cell;     /**< background cell containing the particle (-1 = outside) */

@@ -23,6 +23,7 @@ static const field_row fields[] = {
     FIELD(a, double, PM_DIM),      FIELD(mass, double, 1),      FIELD(vol, double, 1),
     FIELD(vol0, double, 1),        FIELD(F, double, PM_NF),     FIELD(stress, double, PM_NS),
     FIELD(eps_p, double, 1),       FIELD(state, double, 0),     FIELD(hsize, double, PM_DIM),
+    FIELD(C, double, PM_DIM * PM_DIM),
     FIELD(material, int32_t, 1),   FIELD(body, int32_t, 1),     FIELD(cell, int32_t, 1),
     FIELD(id, int32_t, 1),
 };

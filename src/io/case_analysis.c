@@ -16,6 +16,7 @@ static const char *const density_updates[] = {"deformation", "positions", NULL};
 static const char *const analysis_types[] = {"explicit", "implicit", "quasi_static", NULL};
 static const char *const schemes[] = {"musl", "usl", "usf", "newmark_pc", NULL};
 static const char *const fbar_modes[] = {"none", "cell", NULL};
+static const char *const transfers[] = {"flip", "apic", NULL};
 
 /*
  * analysis.strength_reduction. A trial is judged by whether its load steps converge, so the analysis
@@ -145,6 +146,21 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
                             "is available in explicit analyses only so far; use \"none\" with implicit and "
                             "quasi_static",
                             NULL);
+    pm_check(jr_enum(&cx, a, "transfer", 0, transfers, PM_TRANSFER_FLIP, &v));
+    c->analysis.transfer = (pm_transfer)v;
+    if (c->analysis.transfer == PM_TRANSFER_APIC) {
+        /* the affine part is carried through MUSL's re-projection, and needs the fixed grid's nodes */
+        if (c->analysis.type != PM_ANALYSIS_EXPLICIT || c->analysis.scheme != PM_SCHEME_MUSL ||
+            c->method != PM_METHOD_MPM)
+            return pm_case_fail(c->file, "analysis.transfer",
+                                "\"apic\" needs method 'mpm', an explicit analysis and scheme musl; use \"flip\"",
+                                NULL);
+        if (c->analysis.pic > 0)
+            return pm_case_fail(c->file, "analysis.flip",
+                                "blends FLIP with PIC; with transfer \"apic\" the update is APIC's own, so remove "
+                                "flip or set it to 1",
+                                NULL);
+    }
     pm_check(jr_number(&cx, a, "max_steps", 0, 1e8, &c->analysis.max_steps));
     pm_check(jr_range(&cx, "max_steps", c->analysis.max_steps, 1, 0, 1e15, 0));
     long n;

@@ -30,8 +30,9 @@
 /** The file's name in the output directory. */
 #define PM_CHECKPOINT_NAME "checkpoint.h5"
 
-/** The layout's version (attribute `format_version`): 2 added /meshfree and /lme; a restart reads only its own. */
-#define PM_CHECKPOINT_FORMAT 2
+/** The layout's version (attribute `format_version`): 2 added /meshfree and /lme, 3 /particles/C (APIC's
+ *  affine matrix); a restart reads only its own. */
+#define PM_CHECKPOINT_FORMAT 3
 
 /** What the time loop of pm_run() carries from step to step besides the simulation. */
 typedef struct pm_run_loop {

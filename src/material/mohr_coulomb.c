@@ -15,7 +15,18 @@
  * keeps s1 >= s2 >= s3 and violates no plane; otherwise the stress returns to a point (apex or the
  * corners of the cut-off), which is equivalent to Clausen's geometric region tests. The principal
  * tangent is (I - R (A R)^-1 A) De (zero at points) and the full tangent is its spectral form.
- * State: [0] equivalent plastic strain sqrt(2/3 |dev eps_p|^2), accumulated.
+ * State: [0] equivalent plastic strain sqrt(2/3 |dev eps_p|^2), accumulated; [1] the loose volumetric
+ * strain (below).
+ *
+ * Loose volume (stress_free_dilation = 1). A trial stress beyond the apex returns to the apex point,
+ * whatever the dilatancy: the volume the step gained there is not a flow the model describes (psi = 0
+ * allows none) but a point that has lost contact, and without this option it keeps that volume and
+ * takes elastic stress from the first compression on, so loosened material never packs back. With it,
+ * the volumetric strain beyond the apex, (p_trial - p_apex) / K, is kept in state[1] and carried
+ * without stress: while it is positive the point stays at the apex, further extension adds to it, and
+ * compression first takes it back; only the compression beyond it reaches the elastic trial. The option
+ * needs the apex (no tension cut-off below it) and changes nothing while the stress stays inside the
+ * cone.
  */
 #include "material/material_internal.h"
 #include "material/principal.h"
@@ -24,7 +35,7 @@
 
 #include <string.h>
 
-enum { P_C, P_PHI, P_PSI, P_T };
+enum { P_C, P_PHI, P_PSI, P_T, P_LOOSE };
 enum { D_K, D_M, D_SC, D_T, D_APEX, D_CUT };
 
 static const pm_param_spec mc_params[] = {
@@ -35,6 +46,8 @@ static const pm_param_spec mc_params[] = {
      "dilatancy angle psi (degrees, <= friction_angle)"},
     {"tension_cutoff", NAN, 0, 0.0, INFINITY,
      "largest principal (tensile) stress T (Pa); absent: the apex c cot(phi), i.e. no cut-off"},
+    {"stress_free_dilation", 0.0, 0, 0.0, 1.0,
+     "1: volume gained at the apex is carried without stress until compacted back; 0: elastic at once"},
 };
 
 static int mc_init(pm_material *m)
@@ -50,6 +63,9 @@ static int mc_init(pm_material *m)
                             "dilatancy_angle = %g: must be in [0, friction_angle = %g]", psi, phi);
     if (!isnan(T) && !(T >= 0))
         return pm_error_set(PM_EINPUT, "tension_cutoff = %g: must be >= 0", T);
+    const double loose = m->param[P_LOOSE];
+    if (loose != 0 && loose != 1)
+        return pm_error_set(PM_EINPUT, "stress_free_dilation = %g: must be 0 or 1", loose);
     const double sp = sin(pm_deg2rad(phi)), ss = sin(pm_deg2rad(psi));
     const double k = (1 + sp) / (1 - sp);
     m->derived[D_K] = k;
@@ -58,6 +74,9 @@ static int mc_init(pm_material *m)
     m->derived[D_APEX] = sp > 0 ? m->derived[D_SC] / (k - 1) : INFINITY;
     m->derived[D_CUT] = !isnan(T) && T < m->derived[D_APEX];
     m->derived[D_T] = m->derived[D_CUT] ? T : INFINITY;
+    if (loose == 1 && (m->derived[D_CUT] || !isfinite(m->derived[D_APEX])))
+        return pm_error_set(PM_EINPUT, "stress_free_dilation = 1 needs the apex: a friction_angle above 0 and no "
+                                       "tension_cutoff below c cot(phi)");
     return PM_OK;
 }
 
@@ -223,7 +242,7 @@ static int in_cone(const mc_planes *P, const int *J, int n, const double v[3], d
     return 0;
 }
 
-/* Principal return; str sorted descending. Returns 0 elastic, 1 plastic. */
+/* Principal return; str sorted descending. Returns 0 elastic, 1 plastic, 2 at the apex point. */
 static int mc_return(const pm_material *m, const double str[3], double sig[3], double *Dp)
 {
     mc_planes P;
@@ -252,7 +271,7 @@ static int mc_return(const pm_material *m, const double str[3], double sig[3], d
     if (P.n == 3) {
         const double apex = m->derived[D_APEX];
         sig[0] = sig[1] = sig[2] = isfinite(apex) ? apex : (str[0] + str[1] + str[2]) / 3.0;
-        return 1;
+        return isfinite(apex) ? 2 : 1;
     }
     const double T = P.c[3], s3c = m->derived[D_K] * T - P.c[0];
     const double pts[3][3] = {{T, s3c, s3c}, {T, T, s3c}, {T, T, T}};
@@ -277,9 +296,23 @@ static int mc_update(const pm_material *m, const pm_material_step *in, double *s
     pm_trial_state(in->F_incr, stress, K, G, &t);
     if (!isfinite(t.q + t.mean))
         return PM_ESIM;
+    const int loose = m->param[P_LOOSE] == 1;
+    if (loose && state[1] > 0) {
+        /* the step's volume change first goes to the loose volume: all of an extension, of a
+         * compression as much as there is */
+        const double ev = t.deps[0] + t.deps[1] + t.deps[2], taken = ev > -state[1] ? ev : -state[1];
+        for (int i = 0; i < 3; i++)
+            t.sig[i] -= K * taken;
+        state[1] += taken;
+    }
     double str[3], V[9], sig[3], Dp[9] = {0};
     pm_eig_sym3(t.sig, str, V);
-    if (!mc_return(m, str, sig, tangent ? Dp : NULL)) {
+    const int rc = mc_return(m, str, sig, tangent ? Dp : NULL);
+    if (loose && rc == 2) {
+        const double beyond = ((str[0] + str[1] + str[2]) / 3.0 - sig[0]) / K;
+        state[1] += beyond > 0 ? beyond : 0.0;
+    }
+    if (!rc) {
         memcpy(stress, t.sig, 6 * sizeof(double));
         if (tangent)
             pm_elastic_stiffness(K, G, tangent);
@@ -310,7 +343,7 @@ const pm_material_ops pm_mohr_coulomb_ops = {
     .elastic_pair = 1,
     .n_params = sizeof mc_params / sizeof mc_params[0],
     .params = mc_params,
-    .n_state = 1,
+    .n_state = 2,
     .init = mc_init,
     .init_state = NULL,
     .update = mc_update,

@@ -4,6 +4,7 @@
  * passes (explicit_passes.c) and grid updates (explicit_grid.c).
  */
 #include "explicit_internal.h"
+#include "apic.h"
 #include "fbar.h"
 #include "flow.h"
 #include "meshfree_internal.h"
@@ -39,11 +40,17 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
     long bad = pm_xp_p2g(s, 0.0, 1, g);
     if (bad != LONG_MAX)
         return fail_particle(s, bad, "is outside the grid");
+    const int apic = s->c->analysis.transfer == PM_TRANSFER_APIC; /* MUSL only (case_analysis.c) */
+    if (apic)
+        pm_apic_p2g_momentum(s);
     pm_check(pm_loads_apply(s, s->t));
     pm_xp_grid_update(s, dt);
     pm_nodal *nd = &s->nd;
     if (musl) {
-        pm_xp_musl_project(s, dt);
+        if (apic)
+            pm_apic_musl_project(s);
+        else
+            pm_xp_musl_project(s, dt);
         /* nd->vel now holds the re-projected velocity used for the strain rate */
         pm_xp_grid_velocity_from_momentum(s, nd->vel);
     }

@@ -326,6 +326,51 @@ static void mc_tension_cutoff(void **unused)
         assert_true(fabs(l[a] - 5e3) <= 1e-10 * 5e3);
 }
 
+/*
+ * Mohr-Coulomb's loose volume (stress_free_dilation = 1), c = 0, phi = 30, psi = 0, from zero stress
+ * (strain increments given exactly through f_of). An isotropic extension ev = 3e-3 goes beyond the
+ * apex: the stress stays zero and state[1] holds ev. A compression of ev / 2 takes half of it back,
+ * still without stress (the option off: the same step gives p = -K ev / 2 at once). A further
+ * compression of ev takes the other half, and the rest, ev / 2, is elastic: p = -K ev / 2, state[1]
+ * back to zero. Judged to 1e-10 relative (the sums are exact up to a few roundings). A shear step on
+ * a loose point stays at zero stress and leaves the loose volume as it was.
+ */
+static void mc_loose_volume(void **unused)
+{
+    (void)unused;
+    const kv on[] = {{"cohesion", 0}, {"friction_angle", 30}, {"dilatancy_angle", 0}, {"stress_free_dilation", 1},
+                     {NULL, 0}};
+    const kv off[] = {{"cohesion", 0}, {"friction_angle", 30}, {"dilatancy_angle", 0}, {NULL, 0}};
+    pm_material m = make("mohr_coulomb", 1e7, 0.3, on), m0 = make("mohr_coulomb", 1e7, 0.3, off);
+    const double K = m.K, ev = 3e-3, s0[6] = {0, 0, 0, 0, 0, 0};
+    double s[6], st[PM_MAT_MAX_STATE], s1[6], st1[PM_MAT_MAX_STATE];
+    const double ext[6] = {ev / 3, ev / 3, ev / 3, 0, 0, 0}, half[6] = {-ev / 6, -ev / 6, -ev / 6, 0, 0, 0};
+    const double full[6] = {-ev / 3, -ev / 3, -ev / 3, 0, 0, 0}, shear[6] = {0, 0, 0, 2e-3, 0, 0};
+    assert_int_equal(upd(&m, s0, zero_state, ext, 0, s, st, NULL), PM_OK);
+    for (int i = 0; i < 6; i++)
+        assert_true(fabs(s[i]) <= 1e-10 * K * ev);
+    assert_true(fabs(st[1] - ev) <= 1e-10 * ev);
+    assert_int_equal(upd(&m, s, st, shear, 0, s1, st1, NULL), PM_OK);
+    for (int i = 0; i < 6; i++)
+        assert_true(fabs(s1[i]) <= 1e-10 * K * ev);
+    assert_true(fabs(st1[1] - ev) <= 1e-10 * ev);
+    assert_int_equal(upd(&m, s, st, half, 0, s1, st1, NULL), PM_OK);
+    for (int i = 0; i < 6; i++)
+        assert_true(fabs(s1[i]) <= 1e-10 * K * ev);
+    assert_true(fabs(st1[1] - ev / 2) <= 1e-10 * ev);
+    memcpy(s, s1, sizeof s);
+    memcpy(st, st1, sizeof st);
+    assert_int_equal(upd(&m, s, st, full, 0, s1, st1, NULL), PM_OK);
+    for (int i = 0; i < 3; i++)
+        assert_true(fabs(s1[i] + K * ev / 2) <= 1e-10 * K * ev);
+    assert_true(fabs(st1[1]) <= 1e-10 * ev);
+    /* without the option the dilated point is stressed by the first compression */
+    assert_int_equal(upd(&m0, s0, zero_state, ext, 0, s, st, NULL), PM_OK);
+    assert_int_equal(upd(&m0, s, st, half, 0, s1, st1, NULL), PM_OK);
+    for (int i = 0; i < 3; i++)
+        assert_true(fabs(s1[i] + K * ev / 2) <= 1e-10 * K * ev);
+}
+
 /* Random trial states (with and without a tension cut-off): every return is admissible and lies
  * on the surface, and returning the returned stress again changes nothing. */
 static void mc_random_returns(void **unused)
@@ -773,6 +818,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(mc_returns),
         cmocka_unit_test(mc_tension_cutoff),
+        cmocka_unit_test(mc_loose_volume),
         cmocka_unit_test(mc_random_returns),
         cmocka_unit_test(dp_returns),
         cmocka_unit_test(vm_returns),
