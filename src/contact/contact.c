@@ -40,6 +40,7 @@ void pm_contact_destroy(pm_contact *ct)
     free(ct->pt);
     free(ct->side_nbr);
     free(ct->pt_before);
+    free(ct->pt_impulse);
     free(ct);
 }
 
@@ -332,8 +333,9 @@ int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap)
     ct->pt = malloc((cap ? cap : 1) * sizeof *ct->pt);
     ct->side_nbr = malloc(2 * ct->n_fixed * sizeof *ct->side_nbr);
     ct->pt_before = malloc(PM_DIM * ct->n_fixed * sizeof *ct->pt_before);
+    ct->pt_impulse = malloc(PM_DIM * ct->n_fixed * sizeof *ct->pt_impulse);
     side_key *key = malloc(ct->n_fixed * sizeof *key);
-    if (!ct->pt || !ct->side_nbr || !ct->pt_before || !key) {
+    if (!ct->pt || !ct->side_nbr || !ct->pt_before || !ct->pt_impulse || !key) {
         free(key);
         return pm_error_set(PM_ENOMEM, "out of memory for the contact points");
     }

@@ -181,6 +181,7 @@ typedef struct pm_contact_node {
 typedef struct pm_contact_point {
     int32_t surface;         /**< index in pm_contact::surface */
     int32_t node[PM_DIM];    /**< the surface's nodes either side of the point (-1: none) */
+    int32_t entry[PM_DIM];   /**< their entries in pm_contact::node (-1: none) */
     double w[PM_DIM];        /**< their linear shape functions at the point, along the surface */
     double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
@@ -211,6 +212,8 @@ typedef struct pm_contact {
     int32_t *side_nbr;       /**< per node-set entry: the entries before and after it along its surface
                                   (-1 at an end), 2 per entry */
     double *pt_before;       /**< per node-set entry: its velocity before the law, PM_DIM each */
+    double *pt_impulse;      /**< per node-set entry: the impulse its surface's points gave its node, PM_DIM
+                                  each (a node two sets share gets each set's own) */
     const double *node_x;    /**< the node positions the points are placed between (the grid's) */
 } pm_contact;
 

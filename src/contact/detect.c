@@ -163,8 +163,10 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, dou
     pm_contact_point *q = &ct->pt[ct->n_pt++];
     q->surface = (int32_t)k;
     q->node[0] = ct->node[e].node;
+    q->entry[0] = e;
     q->w[0] = 1.0 - s;
     q->node[1] = b >= 0 ? ct->node[b].node : -1;
+    q->entry[1] = b;
     q->w[1] = b >= 0 ? s : 0.0;
     q->allow = gap > 0 ? gap : 0.0; /* divided by dt in the law */
 }

@@ -239,6 +239,16 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
     if (!ct->pt_cap)
         return;
     points_law(ct, f, dt);
+    /* each entry's share of its own surface's point impulses, so that a node two sets share (a corner)
+     * reports to each set what that set did */
+    memset(ct->pt_impulse, 0, PM_DIM * ct->n_fixed * sizeof *ct->pt_impulse);
+    for (size_t q = 0; q < ct->n_pt; q++) {
+        const pm_contact_point *pt = &ct->pt[q];
+        const double *nrm = ct->surface[pt->surface].normal;
+        for (int j = 0; j < PM_DIM; j++)
+            for (int d = 0; pt->entry[j] >= 0 && d < PM_DIM; d++)
+                ct->pt_impulse[PM_DIM * pt->entry[j] + d] -= pt->w[j] * (pt->lam_n * nrm[d] + pt->lam_t[d]);
+    }
     /* node-set entries come first in node[] */
     for (size_t k = 0; k < ct->n_fixed; k++) {
         pm_contact_node *cn = &ct->node[k];
@@ -246,20 +256,20 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         pm_contact_surface *sf = &ct->surface[cn->surface];
         if (!at_points(ct, sf) || !(f.mass[n] > f.mass_floor))
             continue;
-        double *v = f.v + PM_DIM * n;
-        const double *before = ct->pt_before + PM_DIM * k;
-        double dv[PM_DIM];
+        double *v = f.v + PM_DIM * n, before[PM_DIM], after[PM_DIM];
+        const double *J = ct->pt_impulse + PM_DIM * k;
         int acted = 0;
         for (int d = 0; d < PM_DIM; d++) {
-            dv[d] = v[d] - before[d];
-            acted |= dv[d] != 0;
+            before[d] = ct->pt_before[PM_DIM * k + d];
+            after[d] = before[d] + J[d] / f.mass[n];
+            acted |= J[d] != 0;
         }
         /* held: pushed away from the surface by some point's normal impulse */
-        cn->held = dot(dv, cn->normal) < 0;
+        cn->held = dot(J, cn->normal) < 0;
         if (cn->held)
             cn->vn_held = dot(v, cn->normal);
         if (acted)
-            add_force(sf, cn, f.mass[n], before, v, dt);
+            add_force(sf, cn, f.mass[n], before, after, dt);
         constrain(&f, n, v);
         for (int d = 0; d < PM_DIM; d++)
             f.acc[PM_DIM * n + d] = (v[d] - f.v0[PM_DIM * n + d]) / dt_acc;

@@ -592,8 +592,8 @@ static void two_nodes_init(two_nodes *o, double s)
     o->ct->n_pt = 1;
     pm_contact_point *pt = &o->ct->pt[0];
     memset(pt, 0, sizeof *pt);
-    pt->node[0] = 0;
-    pt->node[1] = 1;
+    pt->node[0] = pt->entry[0] = 0;
+    pt->node[1] = pt->entry[1] = 1;
     pt->w[0] = 1.0 - s;
     pt->w[1] = s;
     pt->allow = 0.0;
@@ -638,6 +638,49 @@ static void points_law_acts_where_the_material_touches(void **st)
     pm_contact_destroy(o.ct);
 }
 
+/* A corner node shared by a floor and a wall: each set reports only what its own points did there. */
+static void points_at_a_shared_corner(void **st)
+{
+    (void)st;
+    pm_contact *ct;
+    const int32_t floor_nodes[2] = {0, 1}, wall_nodes[2] = {0, 2};
+    const double down[PM_DIM] = {0.0, -1.0}, left[PM_DIM] = {-1.0, 0.0};
+    double x[3 * PM_DIM] = {0.0, 0.0, 1.0, 0.0, 0.0, 1.0};
+    pm_grid g;
+    memset(&g, 0, sizeof g);
+    g.x = x;
+    assert_int_equal(pm_contact_new(3, &ct), PM_OK);
+    assert_int_equal(pm_contact_add_node_set(ct, 2, floor_nodes, down, 0.0, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    assert_int_equal(pm_contact_add_node_set(ct, 2, wall_nodes, left, 0.0, PM_CONTACT_LAW_NODAL_COULOMB, 1), 1);
+    assert_int_equal(pm_contact_points_reserve(ct, &g, 4), PM_OK);
+    /* one point on each, both at the corner node alone (entries 0 and 2 hold node 0) */
+    ct->n_pt = 2;
+    memset(ct->pt, 0, 2 * sizeof *ct->pt);
+    for (int q = 0; q < 2; q++) {
+        ct->pt[q].surface = q;
+        ct->pt[q].node[0] = 0;
+        ct->pt[q].entry[0] = 2 * q;
+        ct->pt[q].w[0] = 1.0;
+        ct->pt[q].node[1] = ct->pt[q].entry[1] = -1;
+    }
+    double mass[3] = {2.0, 2.0, 2.0}, v0[3 * PM_DIM] = {0}, acc[3 * PM_DIM], vfix[3 * PM_DIM] = {0};
+    double v[3 * PM_DIM] = {-1.0, -3.0, 0.0, 0.0, 0.0, 0.0}; /* into the wall at 1, the floor at 3 */
+    uint8_t fixed[3] = {0};
+    pm_contact_field f = {mass, v0, v, acc, fixed, vfix, 0.0};
+    const double dt = 0.01;
+    pm_contact_apply(ct, f, dt, dt);
+    NEAR(v[0], 0.0);
+    NEAR(v[1], 0.0);
+    pm_contact_force fr;
+    assert_int_equal(pm_contact_force_of(ct, 0, &fr), PM_OK);
+    NEAR(fr.normal, 2.0 * 3.0 / dt); /* the floor stopped the downward 3 m/s only */
+    NEAR(fr.force[0], 0.0);
+    assert_int_equal(pm_contact_force_of(ct, 1, &fr), PM_OK);
+    NEAR(fr.normal, 2.0 * 1.0 / dt); /* the wall the leftward 1 m/s */
+    NEAR(fr.force[1], 0.0);
+    pm_contact_destroy(ct);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -657,6 +700,7 @@ int main(void)
         cmocka_unit_test(sharp_and_round_corners),
         cmocka_unit_test(laws_act_relative_to_a_moving_obstacle),
         cmocka_unit_test(points_law_acts_where_the_material_touches),
+        cmocka_unit_test(points_at_a_shared_corner),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
