@@ -37,6 +37,10 @@ void pm_contact_destroy(pm_contact *ct)
     free(ct->slot);
     free(ct->held);
     free(ct->held_next);
+    free(ct->pt);
+    free(ct->side_nbr);
+    free(ct->pt_before);
+    free(ct->pt_impulse);
     free(ct);
 }
 
@@ -307,5 +311,60 @@ int pm_contact_force_of(const pm_contact *ct, size_t k, pm_contact_force *out)
     if (!ct || k >= ct->n_surfaces)
         return pm_error_set(PM_EINPUT, "no contact surface %zu", k);
     *out = ct->surface[k].f;
+    return PM_OK;
+}
+
+/* A node-set entry and its position along its surface, for ordering the entries. */
+typedef struct side_key {
+    double along;
+    int32_t e;
+} side_key;
+
+static int by_along(const void *a, const void *b)
+{
+    const double x = ((const side_key *)a)->along, y = ((const side_key *)b)->along;
+    return (x > y) - (x < y);
+}
+
+int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap)
+{
+#if PM_DIM != 2
+#error "a node set's neighbours are ordered along a line"
+#endif
+    if (!ct || !ct->n_fixed || !g->x)
+        return PM_OK;
+    /* a particle sets a point only within half a cell of a node set (detect.c): up to 18 per node of
+     * the set at 6 x 6 points per cell, so the list follows the nodes rather than the particles */
+    if (cap > 32 * ct->n_fixed)
+        cap = 32 * ct->n_fixed;
+    ct->pt = malloc((cap ? cap : 1) * sizeof *ct->pt);
+    ct->side_nbr = malloc(2 * ct->n_fixed * sizeof *ct->side_nbr);
+    ct->pt_before = malloc(PM_DIM * ct->n_fixed * sizeof *ct->pt_before);
+    ct->pt_impulse = malloc(PM_DIM * ct->n_fixed * sizeof *ct->pt_impulse);
+    side_key *key = malloc(ct->n_fixed * sizeof *key);
+    if (!ct->pt || !ct->side_nbr || !ct->pt_before || !ct->pt_impulse || !key) {
+        free(key);
+        return pm_error_set(PM_ENOMEM, "out of memory for the contact points");
+    }
+    for (size_t k = 0; k < ct->n_surfaces; k++) {
+        const pm_contact_surface *sf = &ct->surface[k];
+        if (sf->kind != PM_CONTACT_NODE_SET)
+            continue;
+        /* a node set lies on a straight side or line: its nodes in order along it are neighbours */
+        const double t[PM_DIM] = {-sf->normal[1], sf->normal[0]};
+        for (size_t i = 0; i < sf->n; i++) {
+            const double *x = g->x + PM_DIM * ct->node[sf->first + i].node;
+            key[i].along = x[0] * t[0] + x[1] * t[1];
+            key[i].e = (int32_t)(sf->first + i);
+        }
+        qsort(key, sf->n, sizeof *key, by_along);
+        for (size_t i = 0; i < sf->n; i++) {
+            ct->side_nbr[2 * key[i].e] = i > 0 ? key[i - 1].e : -1;
+            ct->side_nbr[2 * key[i].e + 1] = i + 1 < sf->n ? key[i + 1].e : -1;
+        }
+    }
+    free(key);
+    ct->pt_cap = cap;
+    ct->node_x = g->x;
     return PM_OK;
 }

@@ -22,21 +22,30 @@
  *                       every particle and node took 17 % of an elastic block's step.
  *   pm_contact_gaps     explicit steps, right after: every entry's gap from the material's actual
  *                       surface (detect.c), so a law acts when the material reaches the surface, not
- *                       when a node's cell holds material.
+ *                       when a node's cell holds material; and, for the nodal law of a node set (an
+ *                       MPM `friction` side or line) once pm_contact_points_reserve() has been called,
+ *                       the touching points: the foot on the surface of every particle within half a
+ *                       cell of it, between two neighbouring nodes of the set, with its own gap.
  *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law on every contact node
  *                       that carries mass, on its velocity relative to the surface, then the node's
  *                       prescribed components, then the node's acceleration again as (v - v0) /
  *                       dt_acc. The nodal law lets a node approach by its gap in the step and removes
  *                       the rest of its approaching velocity (Bardenhagen et al. 2000), the penalty
  *                       law pushes by stiffness x penetration x dt; both cut the slip by up to mu
- *                       times their normal change. The resultant force of every surface (m dv / dt,
- *                       summed over its nodes) is kept for pm_contact_force_of().
+ *                       times their normal change. A node set with touching points takes the nodal
+ *                       law at the points instead (friction.c): the velocity interpolated at each
+ *                       point, not each node's, may approach by the point's gap and no more, so the
+ *                       reaction acts where the material touches, between the nodes. The resultant
+ *                       force of every surface (m dv / dt, summed over its nodes) is kept for
+ *                       pm_contact_force_of().
  *   pm_contact_project_normal
  *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
  *                       predictor): at the entries of nodal-law surfaces that the law held in
  *                       this step, the normal velocity the law left them (approaching or
  *                       separating: the particles moved with it, and the strain must agree); at the
- *                       other entries in touch (gap <= 0), the approaching normal velocity only; no
+ *                       other entries in touch (gap <= 0), the approaching normal velocity only (none
+ *                       at the entries of a node set acting at touching points: the law left them
+ *                       free); no
  *                       friction impulse (that one has been applied to the end-of-step velocity),
  *                       then the prescribed components.
  *   pm_contact_implicit_begin
@@ -180,6 +189,18 @@ typedef struct pm_contact_node {
                                   every pm_contact_gaps() */
 } pm_contact_node;
 
+/** Where the material's surface touches a node-set surface between two of its nodes (explicit steps,
+ *  pm_contact_points_reserve): the nodal law then acts on the velocity interpolated there. */
+typedef struct pm_contact_point {
+    int32_t surface;         /**< index in pm_contact::surface */
+    int32_t node[PM_DIM];    /**< the surface's nodes either side of the point (-1: none) */
+    int32_t entry[PM_DIM];   /**< their entries in pm_contact::node (-1: none) */
+    double w[PM_DIM];        /**< their linear shape functions at the point, along the surface */
+    double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
+    double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
+    double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
+} pm_contact_point;
+
 /** The surfaces of a simulation and the nodes touching them. */
 typedef struct pm_contact {
     size_t n_surfaces;
@@ -199,6 +220,14 @@ typedef struct pm_contact {
     double *held;            /**< implicit steps: each node's force on the material at the last accepted
                                   step, PM_DIM per (surface, node) */
     double *held_next;       /**< the same, being written by pm_contact_implicit_accept() */
+    size_t n_pt, pt_cap;     /**< touching points in use and allocated (0: node sets act node by node) */
+    pm_contact_point *pt;    /**< explicit steps: where the material touches node-set surfaces */
+    int32_t *side_nbr;       /**< per node-set entry: the entries before and after it along its surface
+                                  (-1 at an end), 2 per entry */
+    double *pt_before;       /**< per node-set entry: its velocity before the law, PM_DIM each */
+    double *pt_impulse;      /**< per node-set entry: the impulse its surface's points gave its node, PM_DIM
+                                  each (a node two sets share gets each set's own) */
+    const double *node_x;    /**< the node positions the points are placed between (the grid's) */
 } pm_contact;
 
 /** The nodal arrays one application works on (one body's field). */
@@ -262,6 +291,13 @@ int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double nor
  */
 int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double wave, double h);
 
+/**
+ * Let the nodal law of every node-set surface act where the material touches it instead of node by
+ * node, for up to @p cap particles (explicit steps of a single-field MPM run; see pm_contact_gaps).
+ * @p g gives the node positions. Call once after pm_contact_create(). @return PM_OK, PM_ENOMEM
+ */
+int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap);
+
 /** Free (NULL is fine). */
 void pm_contact_destroy(pm_contact *ct);
 
@@ -277,7 +313,8 @@ void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t);
  * The gap of every contact entry from the material's actual surface: the smallest, over the
  * particles whose stencil holds the node, of the particle's signed distance to the surface minus
  * its half-size along the normal. Contact then starts when the material reaches the surface, not
- * when its cell does. Needs connected particles (pm_approx::connect at their positions).
+ * when its cell does. With points reserved, also the touching points of the node sets' nodal law
+ * (pm_contact_point; see the top). Needs connected particles (pm_approx::connect at their positions).
  */
 void pm_contact_gaps(pm_contact *ct, const pm_approx *a, const pm_particles *p);
 
@@ -289,8 +326,9 @@ double pm_contact_distance(const pm_contact *ct, const pm_contact_surface *sf, c
                            double n[PM_DIM]);
 
 /**
- * Explicit steps: the law at every contact node of @p f that carries mass, then its prescribed
- * components, then acc = (v - v0) / dt_acc there; the surfaces' forces are m dv / dt.
+ * Explicit steps: the law at every contact node of @p f that carries mass (node sets with touching
+ * points: at the points, all at once), then its prescribed components, then acc = (v - v0) / dt_acc
+ * there; the surfaces' forces are m dv / dt.
  */
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc);
 

@@ -1,7 +1,8 @@
 /*
  * Which nodes touch which surface (contact.h): the candidates near every surface at time t, then the
  * gap of each from the material's surface, measured from the particles near the node, so a node acts
- * when the material reaches the surface and not when the node's cell does.
+ * when the material reaches the surface and not when the node's cell does; and where the material
+ * touches a node set, the points its nodal law acts at (friction.c).
  */
 #include "contact/contact.h"
 
@@ -135,11 +136,50 @@ static inline double half_size(const pm_particles *p, size_t i)
  * the largest one (a particle midway between two nodes sets both). */
 static const double VOTE = 0.5;
 
+/* A point where particle i's surface (its foot on the plane, gap above it) may touch node-set surface k:
+ * between the entry e whose node moves the particle most and the neighbour of e on the foot's side. */
+static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, double sd, const double n[PM_DIM],
+                      double gap)
+{
+#if PM_DIM != 2
+#error "a point lies between two nodes of a line"
+#endif
+    if (ct->n_pt >= ct->pt_cap)
+        return;
+    const double *xa = ct->node_x + PM_DIM * ct->node[e].node;
+    const double foot[PM_DIM] = {xp[0] + sd * n[0], xp[1] + sd * n[1]};
+    const double t[PM_DIM] = {-n[1], n[0]}, along = (foot[0] - xa[0]) * t[0] + (foot[1] - xa[1]) * t[1];
+    int32_t b = -1;
+    double s = 0.0;
+    for (int side = 0; side < 2; side++) {
+        const int32_t nb = ct->side_nbr[2 * e + side];
+        if (nb < 0)
+            continue;
+        const double *xb = ct->node_x + PM_DIM * ct->node[nb].node;
+        const double span = (xb[0] - xa[0]) * t[0] + (xb[1] - xa[1]) * t[1];
+        if (span != 0 && along / span > 0) {
+            b = nb;
+            s = fmin(along / span, 1.0);
+        }
+    }
+    pm_contact_point *q = &ct->pt[ct->n_pt++];
+    q->surface = (int32_t)k;
+    q->node[0] = ct->node[e].node;
+    q->entry[0] = e;
+    q->w[0] = 1.0 - s;
+    q->node[1] = b >= 0 ? ct->node[b].node : -1;
+    q->entry[1] = b;
+    q->w[1] = b >= 0 ? s : 0.0;
+    q->allow = gap > 0 ? gap : 0.0; /* divided by dt in the law */
+}
+
 /* The gaps of the entries [first, last) of surface k from the particles near it. */
 static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, const pm_approx *a,
                          const pm_particles *p)
 {
     const pm_contact_surface *sf = &ct->surface[k];
+    /* the nodal law of a node set acts where the material touches it, once points are reserved */
+    const int points = ct->pt_cap > 0 && sf->kind == PM_CONTACT_NODE_SET && sf->law == PM_CONTACT_LAW_NODAL_COULOMB;
     for (size_t e = first; e < last; e++) {
         ct->slot[ct->node[e].node] = (int32_t)e;
         ct->node[e].gap = INFINITY; /* no particle in the node's support: nothing to touch */
@@ -177,8 +217,11 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
         for (int j = 0; j < st.n; j++)
             if (ct->slot[st.node[j]] >= 0 && st.N[j] > wmax)
                 wmax = st.N[j];
+        int32_t e_max = -1;
         for (int j = 0; wmax > 0 && j < st.n; j++) {
             const int32_t e = ct->slot[st.node[j]];
+            if (e >= 0 && st.N[j] == wmax && e_max < 0)
+                e_max = e;
             if (e >= 0 && st.N[j] >= VOTE * wmax && gap < ct->node[e].gap) {
                 ct->node[e].gap = gap;
                 /* a tool's tip pushes the material along the face it lies off (seed 004 §5.3.2) */
@@ -187,6 +230,8 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
                         ct->node[e].normal[d] = n[d];
             }
         }
+        if (points && e_max >= 0 && gap <= 0.25 * ct->reach)
+            add_point(ct, k, e_max, p->x + PM_DIM * i, sd, n, gap);
     }
     /* a node held by both faces of a corner has two entries side by side, and the slot named the last */
     for (size_t e = last; e-- > first + 1;)
@@ -202,6 +247,7 @@ void pm_contact_gaps(pm_contact *ct, const pm_approx *a, const pm_particles *p)
         return;
     /* node sets hold their entries in creation order, the others in detection order: both by surface */
     size_t e = 0;
+    ct->n_pt = 0;
     while (e < ct->n_node) {
         const int32_t k = ct->node[e].surface;
         size_t end = e;

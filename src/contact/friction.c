@@ -106,6 +106,89 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
         J[1 + d] += m * (dv[d] - dvn * cn->normal[d]);
 }
 
+/* Whether the nodal law of surface sf acts at the material's touching points (pm_contact_points_reserve). */
+static inline int at_points(const pm_contact *ct, const pm_contact_surface *sf)
+{
+    return ct->pt_cap > 0 && sf->kind == PM_CONTACT_NODE_SET && sf->law == PM_CONTACT_LAW_NODAL_COULOMB;
+}
+
+/* Sweeps of the point law at most, and the velocity change at every point below which they stop. */
+enum { POINT_SWEEPS = 200 };
+static const double POINT_TOL = 1e-9;
+
+/*
+ * The nodal law at the touching points: the velocity interpolated at each point (its two nodes, by
+ * their shape functions along the surface) may approach by the point's gap in the step and no more,
+ * and its slip is cut by up to mu times the normal impulse there, never reversed. An impulse lam at a
+ * point changes the velocity of each of its nodes by w lam / m, so it acts where the material touches:
+ * a disk touching between two nodes is held there, not at the node ahead that the node-by-node law
+ * stopped while the material over it was still descending (it pivoted the disk over that node, which
+ * then climbed). Points share nodes, so the impulses are found by projected Gauss-Seidel sweeps (each
+ * point's normal impulse kept >= 0, its tangential one in the Coulomb disk) until they settle.
+ */
+static void points_law(pm_contact *ct, pm_contact_field f, double dt)
+{
+    for (size_t q = 0; q < ct->n_pt; q++) {
+        ct->pt[q].lam_n = 0.0;
+        for (int d = 0; d < PM_DIM; d++)
+            ct->pt[q].lam_t[d] = 0.0;
+    }
+    for (int sweep = 0; sweep < POINT_SWEEPS; sweep++) {
+        double change = 0.0;
+        for (size_t q = 0; q < ct->n_pt; q++) {
+            pm_contact_point *pt = &ct->pt[q];
+            const pm_contact_surface *sf = &ct->surface[pt->surface];
+            const double *nrm = sf->normal;
+            double denom = 0.0, vn = 0.0, vt[PM_DIM] = {0};
+            double w_m[PM_DIM] = {0}; /* w / m of each node, 0 where it carries no material */
+            for (int j = 0; j < PM_DIM; j++) {
+                const int32_t I = pt->node[j];
+                if (I < 0 || !(f.mass[I] > f.mass_floor) || pt->w[j] == 0)
+                    continue;
+                w_m[j] = pt->w[j] / f.mass[I];
+                denom += pt->w[j] * w_m[j];
+                vn += pt->w[j] * dot(f.v + PM_DIM * I, nrm);
+            }
+            if (!(denom > 0))
+                continue;
+            double dl = (vn - pt->allow / dt) / denom;
+            if (pt->lam_n + dl < 0)
+                dl = -pt->lam_n;
+            pt->lam_n += dl;
+            for (int j = 0; j < PM_DIM; j++)
+                for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++) {
+                    double *v = f.v + PM_DIM * pt->node[j];
+                    v[d] -= w_m[j] * dl * nrm[d];
+                }
+            for (int j = 0; j < PM_DIM; j++) {
+                if (!(w_m[j] > 0))
+                    continue;
+                const double *v = f.v + PM_DIM * pt->node[j], vnj = dot(v, nrm);
+                for (int d = 0; d < PM_DIM; d++)
+                    vt[d] += pt->w[j] * (v[d] - vnj * nrm[d]);
+            }
+            /* the tangential impulse that stops the slip, returned to the Coulomb bound */
+            double lt[PM_DIM];
+            for (int d = 0; d < PM_DIM; d++)
+                lt[d] = pt->lam_t[d] + vt[d] / denom;
+            const double bound = pt->lam_n > 0 ? sf->mu * pt->lam_n : 0.0, size = norm(lt);
+            const double scale = size > bound ? bound / size : 1.0;
+            double dlt[PM_DIM];
+            for (int d = 0; d < PM_DIM; d++) {
+                const double next = scale * lt[d];
+                dlt[d] = next - pt->lam_t[d];
+                pt->lam_t[d] = next;
+            }
+            for (int j = 0; j < PM_DIM; j++)
+                for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++)
+                    f.v[PM_DIM * pt->node[j] + d] -= w_m[j] * dlt[d];
+            change = fmax(change, fmax(fabs(dl), norm(dlt)) * denom);
+        }
+        if (change <= POINT_TOL)
+            break;
+    }
+}
+
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc)
 {
     if (!ct)
@@ -121,6 +204,10 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         pm_contact_surface *sf = &ct->surface[cn->surface];
         double *v = f.v + PM_DIM * n, before[PM_DIM];
         memcpy(before, v, sizeof before);
+        if (at_points(ct, sf)) { /* after the loop, all points together */
+            memcpy(ct->pt_before + PM_DIM * k, v, sizeof before);
+            continue;
+        }
         int acted = 0;
         if (sf->motion) { /* the laws act on the velocity relative to a moving obstacle */
             for (int d = 0; d < PM_DIM; d++)
@@ -149,6 +236,44 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         for (int d = 0; d < PM_DIM; d++)
             f.acc[PM_DIM * n + d] = (v[d] - f.v0[PM_DIM * n + d]) / dt_acc;
     }
+    if (!ct->pt_cap)
+        return;
+    points_law(ct, f, dt);
+    /* each entry's share of its own surface's point impulses, so that a node two sets share (a corner)
+     * reports to each set what that set did */
+    memset(ct->pt_impulse, 0, PM_DIM * ct->n_fixed * sizeof *ct->pt_impulse);
+    for (size_t q = 0; q < ct->n_pt; q++) {
+        const pm_contact_point *pt = &ct->pt[q];
+        const double *nrm = ct->surface[pt->surface].normal;
+        for (int j = 0; j < PM_DIM; j++)
+            for (int d = 0; pt->entry[j] >= 0 && d < PM_DIM; d++)
+                ct->pt_impulse[PM_DIM * pt->entry[j] + d] -= pt->w[j] * (pt->lam_n * nrm[d] + pt->lam_t[d]);
+    }
+    /* node-set entries come first in node[] */
+    for (size_t k = 0; k < ct->n_fixed; k++) {
+        pm_contact_node *cn = &ct->node[k];
+        const int32_t n = cn->node;
+        pm_contact_surface *sf = &ct->surface[cn->surface];
+        if (!at_points(ct, sf) || !(f.mass[n] > f.mass_floor))
+            continue;
+        double *v = f.v + PM_DIM * n, before[PM_DIM], after[PM_DIM];
+        const double *J = ct->pt_impulse + PM_DIM * k;
+        int acted = 0;
+        for (int d = 0; d < PM_DIM; d++) {
+            before[d] = ct->pt_before[PM_DIM * k + d];
+            after[d] = before[d] + J[d] / f.mass[n];
+            acted |= J[d] != 0;
+        }
+        /* held: pushed away from the surface by some point's normal impulse */
+        cn->held = dot(J, cn->normal) < 0;
+        if (cn->held)
+            cn->vn_held = dot(v, cn->normal);
+        if (acted)
+            add_force(sf, cn, f.mass[n], before, after, dt);
+        constrain(&f, n, v);
+        for (int d = 0; d < PM_DIM; d++)
+            f.acc[PM_DIM * n + d] = (v[d] - f.v0[PM_DIM * n + d]) / dt_acc;
+    }
 }
 
 void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f)
@@ -158,8 +283,10 @@ void pm_contact_project_normal(const pm_contact *ct, pm_contact_field f)
     for (size_t k = 0; k < ct->n_node; k++) {
         const pm_contact_node *cn = &ct->node[k];
         const pm_contact_surface *sf = &ct->surface[cn->surface];
-        /* only where the material touches; a penalty surface acts by its force alone */
-        if ((cn->gap > 0 && !cn->held) || sf->law == PM_CONTACT_LAW_PENALTY_COULOMB)
+        /* only where the material touches; a penalty surface acts by its force alone; a surface acting
+         * at the touching points left the nodes it did not hold free */
+        if ((cn->gap > 0 && !cn->held) || sf->law == PM_CONTACT_LAW_PENALTY_COULOMB ||
+            (!cn->held && at_points(ct, sf)))
             continue;
         double *v = f.v + PM_DIM * cn->node;
         for (int d = 0; sf->motion && d < PM_DIM; d++)

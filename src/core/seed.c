@@ -205,6 +205,26 @@ static int cell_may_touch(const pm_grid *g, size_t cell, const double lo[2], con
     return clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1];
 }
 
+/*
+ * A particle's half-size reaches no further than a circle's rim. A circle cuts the cells at every
+ * angle, so the seeding half-sizes of its outermost points (their share of the cell) overshoot the rim
+ * by different amounts: seen from the particles, as contact sees a body (its gap is the centre's
+ * distance minus the half-size), a disk of R = 0.5 m on h = R/8 reached 0.502 m below its centre and
+ * up to 0.512 m in other directions, a polygon that climbed onto its own corners as it rolled (8 mm
+ * in 0.3 s, 9 % of the energy it released) and lost 14 % of its acceleration. A point at depth d
+ * below the rim gets half-sizes of at most d, so the body's extent ends at the rim in every direction.
+ * Straight faces (rectangles, polygons) keep the seeding half-sizes: along a face they overshoot by
+ * one amount, so the face stays straight.
+ */
+static void trim_to_circle(const pm_shape *s, const double x[2], double hs[2])
+{
+    if (s->type != PM_SHAPE_CIRCLE)
+        return;
+    const double depth = s->radius - hypot(x[0] - s->center[0], x[1] - s->center[1]);
+    for (int d = 0; d < 2; d++)
+        hs[d] = fmin(hs[d], depth);
+}
+
 /* Visit every quadrature point of a body inside its shape; fill particles (body index b) when p != NULL. */
 static size_t seed_body(const pm_case *c, const pm_case_body *body, int32_t b, const pm_grid *g, pm_particles *p,
                         size_t first)
@@ -238,6 +258,7 @@ static size_t seed_body(const pm_case *c, const pm_case_body *body, int32_t b, c
                 p->mass[k] = m->density * p->vol[k];
                 p->hsize[2 * k] = cp.hs[q][0];
                 p->hsize[2 * k + 1] = cp.hs[q][1];
+                trim_to_circle(&body->shape, cp.x[q], p->hsize + 2 * k);
                 double *F = p->F + PM_NF * k;
                 F[PM_FXX] = F[PM_FYY] = F[PM_FZZ] = 1.0;
                 p->material[k] = body->material;

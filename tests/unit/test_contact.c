@@ -566,6 +566,121 @@ static void laws_act_relative_to_a_moving_obstacle(void **st)
     pm_case_free(&c);
 }
 
+/* Two floor nodes 1 m apart (normal (0, -1)), mass 2 each, one touching point between them at a
+ * quarter or three quarters of the way: node 0 lifts off at 1 m/s, node 1 approaches at 1 m/s, both
+ * slide at 1 m/s. */
+typedef struct two_nodes {
+    pm_contact *ct;
+    double mass[2], v0[2 * PM_DIM], v[2 * PM_DIM], acc[2 * PM_DIM], vfix[2 * PM_DIM];
+    uint8_t fixed[2];
+} two_nodes;
+
+static void two_nodes_init(two_nodes *o, double s)
+{
+    memset(o, 0, sizeof *o);
+    const int32_t nodes[2] = {0, 1};
+    const double n[PM_DIM] = {0.0, -1.0};
+    double x[2 * PM_DIM] = {0.0, 0.0, 1.0, 0.0};
+    pm_grid g;
+    memset(&g, 0, sizeof g);
+    g.x = x;
+    assert_int_equal(pm_contact_new(2, &o->ct), PM_OK);
+    assert_int_equal(pm_contact_add_node_set(o->ct, 2, nodes, n, 1.0, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    assert_int_equal(pm_contact_points_reserve(o->ct, &g, 4), PM_OK);
+    assert_int_equal(o->ct->side_nbr[1], 1); /* node 1 follows node 0 along the side */
+    o->ct->node_x = NULL;                    /* only the gap pass places points; they are set here */
+    o->ct->n_pt = 1;
+    pm_contact_point *pt = &o->ct->pt[0];
+    memset(pt, 0, sizeof *pt);
+    pt->node[0] = pt->entry[0] = 0;
+    pt->node[1] = pt->entry[1] = 1;
+    pt->w[0] = 1.0 - s;
+    pt->w[1] = s;
+    pt->allow = 0.0;
+    o->mass[0] = o->mass[1] = 2.0;
+    const double v[2 * PM_DIM] = {1.0, 1.0, 1.0, -1.0};
+    memcpy(o->v, v, sizeof v);
+}
+
+static void points_law_acts_where_the_material_touches(void **st)
+{
+    (void)st;
+    two_nodes o;
+    const double dt = 0.01;
+    /* near node 0 the point lifts off ((3/4)(-1) + (1/4)(1) < 0 towards the floor): nothing acts, where
+     * the node-by-node law would have stopped node 1 */
+    two_nodes_init(&o, 0.25);
+    pm_contact_field f = {o.mass, o.v0, o.v, o.acc, o.fixed, o.vfix, 0.0};
+    pm_contact_apply(o.ct, f, dt, dt);
+    NEAR(o.v[1], 1.0);
+    NEAR(o.v[3], -1.0);
+    NEAR(o.v[0], 1.0);
+    pm_contact_destroy(o.ct);
+    /* near node 1 it approaches at 0.5: the impulse lam = 0.5 / (0.25^2 / 2 + 0.75^2 / 2) = 1.6 at the
+     * point stops it there, shared by the nodes by their shape functions (0.2 and 0.6 m/s); friction
+     * (mu = 1) needs 1 / 0.3125 = 3.2 to stop the slip, is held to 1.6 and halves it */
+    two_nodes_init(&o, 0.75);
+    f = (pm_contact_field){o.mass, o.v0, o.v, o.acc, o.fixed, o.vfix, 0.0};
+    pm_contact_apply(o.ct, f, dt, dt);
+    NEAR(o.v[1], 1.2);
+    NEAR(o.v[3], -0.4);
+    NEAR(0.25 * o.v[1] + 0.75 * o.v[3], 0.0);
+    NEAR(o.v[0], 1.0 - 0.2);
+    NEAR(o.v[2], 1.0 - 0.6);
+    NEAR(0.25 * o.v[0] + 0.75 * o.v[2], 0.5);
+    NEAR(o.acc[3], (o.v[3] - o.v0[3]) / dt);
+    /* the surface's force is the point's impulse: 1.6 up, 1.6 against the slip */
+    pm_contact_force fr;
+    assert_int_equal(pm_contact_force_of(o.ct, 0, &fr), PM_OK);
+    NEAR(fr.normal, 1.6 / dt);
+    NEAR(fr.force[0], -1.6 / dt);
+    assert_true(o.ct->node[0].held && o.ct->node[1].held);
+    pm_contact_destroy(o.ct);
+}
+
+/* A corner node shared by a floor and a wall: each set reports only what its own points did there. */
+static void points_at_a_shared_corner(void **st)
+{
+    (void)st;
+    pm_contact *ct;
+    const int32_t floor_nodes[2] = {0, 1}, wall_nodes[2] = {0, 2};
+    const double down[PM_DIM] = {0.0, -1.0}, left[PM_DIM] = {-1.0, 0.0};
+    double x[3 * PM_DIM] = {0.0, 0.0, 1.0, 0.0, 0.0, 1.0};
+    pm_grid g;
+    memset(&g, 0, sizeof g);
+    g.x = x;
+    assert_int_equal(pm_contact_new(3, &ct), PM_OK);
+    assert_int_equal(pm_contact_add_node_set(ct, 2, floor_nodes, down, 0.0, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    assert_int_equal(pm_contact_add_node_set(ct, 2, wall_nodes, left, 0.0, PM_CONTACT_LAW_NODAL_COULOMB, 1), 1);
+    assert_int_equal(pm_contact_points_reserve(ct, &g, 4), PM_OK);
+    /* one point on each, both at the corner node alone (entries 0 and 2 hold node 0) */
+    ct->n_pt = 2;
+    memset(ct->pt, 0, 2 * sizeof *ct->pt);
+    for (int q = 0; q < 2; q++) {
+        ct->pt[q].surface = q;
+        ct->pt[q].node[0] = 0;
+        ct->pt[q].entry[0] = 2 * q;
+        ct->pt[q].w[0] = 1.0;
+        ct->pt[q].node[1] = ct->pt[q].entry[1] = -1;
+    }
+    double mass[3] = {2.0, 2.0, 2.0}, v0[3 * PM_DIM] = {0}, acc[3 * PM_DIM], vfix[3 * PM_DIM] = {0};
+    double v[3 * PM_DIM] = {-1.0, -3.0, 0.0, 0.0, 0.0, 0.0}; /* into the wall at 1, the floor at 3 */
+    uint8_t fixed[3] = {0};
+    pm_contact_field f = {mass, v0, v, acc, fixed, vfix, 0.0};
+    const double dt = 0.01;
+    pm_contact_apply(ct, f, dt, dt);
+    NEAR(v[0], 0.0);
+    NEAR(v[1], 0.0);
+    pm_contact_force fr;
+    assert_int_equal(pm_contact_force_of(ct, 0, &fr), PM_OK);
+    NEAR(fr.normal, 2.0 * 3.0 / dt); /* the floor stopped the downward 3 m/s only */
+    NEAR(fr.force[0], 0.0);
+    assert_int_equal(pm_contact_force_of(ct, 1, &fr), PM_OK);
+    NEAR(fr.normal, 2.0 * 1.0 / dt); /* the wall the leftward 1 m/s */
+    NEAR(fr.force[1], 0.0);
+    pm_contact_destroy(ct);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -584,6 +699,8 @@ int main(void)
         cmocka_unit_test(obstacles_move_and_measure),
         cmocka_unit_test(sharp_and_round_corners),
         cmocka_unit_test(laws_act_relative_to_a_moving_obstacle),
+        cmocka_unit_test(points_law_acts_where_the_material_touches),
+        cmocka_unit_test(points_at_a_shared_corner),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

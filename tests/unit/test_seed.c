@@ -189,8 +189,17 @@ static void circle_and_triangle_within_the_boundary_band(void **state)
            fabs(total_volume(&s.p) - area), band);
     assert_true(fabs(total_volume(&s.p) - area) <= band);
     assert_int_equal(s.p.n, brute_count(nx, ny, n, in_circle));
-    for (size_t i = 0; i < s.p.n; i++)
+    /* the particles' extents end at the rim (contact measures the body's surface from them), and the
+     * outermost reach it to within the rim's sagitta over a point spacing: the disk stays round */
+    double reach = 0.0;
+    for (size_t i = 0; i < s.p.n; i++) {
         assert_true(in_circle(s.p.x + PM_DIM * i));
+        const double *x = s.p.x + PM_DIM * i, *hs = s.p.hsize + PM_DIM * i;
+        const double depth = r - hypot(x[0] - 1, x[1] - 0.5);
+        assert_true(hs[0] <= depth && hs[1] <= depth && fmax(hs[0], hs[1]) <= 0.5 * h / n * (1 + 1e-12));
+        reach = fmax(reach, r - depth + fmin(hs[0], hs[1]));
+    }
+    assert_true(reach <= r + 1e-12 && reach >= r - 1e-3 * h);
     masses_are_density_times_volume(&s.p);
     release(&s);
 

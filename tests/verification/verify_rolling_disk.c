@@ -14,15 +14,35 @@
  *   - the wall time of the run;
  * and judges, on the finest step of each row,
  *   - the centre acceleration a_num, the least-squares fit of u(t) = a t^2 / 2 to the samples, against
- *     (2/3) |g| sin(theta), and
+ *     (2/3) |g| sin(theta);
  *   - rolling, not sliding: the spin omega (angular momentum about the centre of mass over its polar
- *     moment of inertia) against v / R, as the least-squares ratio of -omega R to v over the samples.
+ *     moment of inertia) against v / R, as the least-squares ratio of -omega R to v over the samples;
+ *   - the centre's largest displacement normal to the plane over the samples (rise or sink) within 1 %
+ *     of R, as the benchmark asks;
+ *   - no particle leaving the disk: the farthest particle from the centre of mass stays within 2 % of
+ *     R (TOL_REACH),
  * and reports the centre's rise off the plane at the end. The tolerances are in ROWS, with their reasons.
+ *
+ * What the coarse mesh affords. Two things cost the disk its acceleration before (0.857 of the exact
+ * one here, 0.48 before that), both measured with an energy and angular-momentum budget of this case:
+ *   - the seeded disk was not round as contact sees it (centre distance minus half-size): the outermost
+ *     points' seeding half-sizes overshot the rim by different amounts, 0.502 m below the centre at the
+ *     start and up to 0.512 m in other directions, so the disk climbed 8 mm onto its own corners in
+ *     0.3 s (9 % of the energy it released). Half-sizes now end at the rim (src/core/seed.c);
+ *   - the friction side's node-by-node law held the boundary node ahead of the contact point, whose
+ *     velocity is that of the material still descending ahead of it: the normal force sat 40 mm (0.6
+ *     of a cell) ahead of the centre, a rolling resistance, and at h = R/16 and R/32 the runs gained
+ *     energy after 0.2 s and threw particles off. The law now acts at the touching points, on the
+ *     velocity interpolated there (src/contact/friction.c): the normal force sits within 2 mm of the
+ *     centre, and over 1 s at h = R/8 the disk loses 3 % of the released energy by 0.1 s and 0.3 % by
+ *     1 s, where the node-by-node law, with the same round disk, had gained 3.5 times it by 1 s.
+ * At h = R/8 the acceleration is now within 2 % over 0.3 s (0.5 % over 1 s), so the benchmark's 5 %
+ * is judged on this mesh.
  *
  * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): the step dt1 only, a seventh of the work,
  * judged as the finest step is, and the MPM and GMM-MLS rows only. The step hardly matters here
- * (measured, dt1 / dt3: acceleration 0.858 / 0.857 of the exact one for MPM, 0.719 / 0.715 GMM-MLS,
- * 0.753 / 0.748 GMM-LME; spin 0.997 / 0.997, 0.999 / 1.004, 0.992 / 0.999), so the same tolerances hold.
+ * (measured, dt1 / dt3: acceleration 1.0185 / 1.0175 of the exact one for MPM, 0.949 / 0.946 GMM-MLS;
+ * spin 0.976 / 0.977, 0.949 / 0.959), so the same tolerances hold.
  * The GMM-LME row is left out because under ASan on a loaded machine it alone outlasts the test's 15
  * minutes (MPM took 99 s, GMM-MLS 260 s); verify_gmm_column_collapse's small variant runs LME instead.
  */
@@ -47,31 +67,35 @@ typedef struct rd_row {
 
 /*
  * MPM, linear shape functions on tri3 cells.
+ * Acceleration, 5 %: the benchmark's figure, met here (measured +1.8 %: the disk first settles 1.1 mm
+ * into the plane, elastic and contact compression, and the 2 % of slip measured below lets it run
+ * slightly ahead). A stuck disk (-100 %), a frictionless one sliding at g sin(theta) (+50 %), the
+ * old pivoting one (-48 %) and the one that climbed its corners (-14 %) all fail.
  * Spin, 5 %: the spin of a disk that rolls without slipping is exactly v / R; MPM particle velocities
- * carry the disk's elastic ringing and the contact is spread over a cell, hence a few per cent; a disk
- * that slides even partly spins measurably slower (a frictionless one not at all).
- * Acceleration, 20 %: the friction side acts at a node only once the material's surface reaches the
- * plane (the gap from the particles nearest the node, src/contact/detect.c), not when the node's cell
- * holds material, so the disk no longer pivots over material a cell ahead of the contact. What is
- * left at h = R/8 (measured: 0.85 of the acceleration, rise 8-9 mm, against 0.52 and 20 mm when the
- * node acted as soon as it had mass) comes from the node's one velocity for the material on both
- * sides of the contact point: material just ahead of it is stopped with the node while still a
- * fraction of a millimetre to millimetres above the plane. A stuck disk (-100 %) or the old pivoting
- * one (-48 %) fails; the 5 % the benchmark asks for is not reached at this resolution.
+ * carry the disk's elastic ringing and the friction acts at a few points only, hence a few per cent
+ * (measured -2.3 %); a disk that slides even partly spins measurably slower (a frictionless one not at all).
  *
- * GMM-MLS and GMM-LME (gamma 0.8 as in the paper's best row): 35 %. The plane is a wall acting on the
- * cloud nodes near it by the same gap; GMM's nodes are the corners of the cells the disk occupied at
- * t = 0 and their supports span 1.5 sqrt(2) cells, so a node's velocity mixes more of the material on
- * both sides of the contact (measured: 0.71 and 0.75 of the acceleration, rise 11-12 mm, against 0.49
- * and 0.53 before).
+ * GMM-MLS and GMM-LME (gamma 0.8 as in the paper's best row): the plane is a wall acting node by node on
+ * the cloud nodes near it, with the gap from the material's surface; GMM's nodes are the corners of the
+ * cells the disk occupied at t = 0 and their supports span 1.5 sqrt(2) cells, so a node's velocity mixes
+ * more of the material on both sides of the contact. Acceleration 10 % (measured -5.1 to -5.4 %, against
+ * -28 % and -25 % before the disk was round and about -50 % before the gaps came from the material),
+ * spin 8 % (measured -4.1 to -5.2 % for MLS, +0.5 to +0.7 % for LME): a sliding or stuck disk fails both.
  */
 static const rd_row ROWS[] = {
-    {"MPM", PM_METHOD_MPM, "linear", NAN, 0.20, 0.05},
-    {"GMM-MLS", PM_METHOD_GMM, "mls", NAN, 0.35, 0.05},
-    {"GMM-LME (gamma 0.8)", PM_METHOD_GMM, "lme", 0.8, 0.35, 0.05},
+    {"MPM", PM_METHOD_MPM, "linear", NAN, 0.05, 0.05},
+    {"GMM-MLS", PM_METHOD_GMM, "mls", NAN, 0.10, 0.08},
+    {"GMM-LME (gamma 0.8)", PM_METHOD_GMM, "lme", 0.8, 0.10, 0.08},
 };
 
 enum { N_DT = 3, N_ROWS = sizeof ROWS / sizeof ROWS[0] };
+static const char *const COARSE_CASE = "tests/verification/cases/rolling_disk.json";
+/* No particle leaves the disk: the farthest one stays within 2 % of R of the centre of mass. The disk's
+ * elastic strain is a few tenths of a per cent; a particle thrown off at the contact (as one was at
+ * 10.8 m/s before) is centimetres away at the next sample. */
+static const double TOL_REACH = 0.02;
+/* The benchmark's bound on the centre's rise off the plane, applied to any normal displacement. */
+static const double TOL_RISE = 0.01;
 static const double SAMPLE_DT = 0.01; /* t_i of eq. 67 */
 
 typedef struct rd_result {
@@ -80,6 +104,8 @@ typedef struct rd_result {
     double acc;        /* fitted centre acceleration */
     double spin;       /* least-squares ratio of -omega R to v over the samples */
     double rise;       /* centre's normal displacement at the end (m) */
+    double rise_max;   /* its largest size at the samples, rise or sink (m) */
+    double reach;      /* largest distance of a particle from the centre of mass at the samples (m) */
     int ok;            /* the run finished */
 } rd_result;
 
@@ -99,10 +125,21 @@ static double body_spin(const pm_sim *s, const double xc[2], const double vc[2])
     return L / I;
 }
 
-static void run(const rd_row *row, double dt, const char *csv, rd_result *r)
+/* Largest distance of a particle of body 0 from the centre of mass @p xc. */
+static double body_reach(const pm_sim *s, const double xc[2])
+{
+    double r = 0;
+    for (size_t i = 0; i < s->p.n; i++)
+        if (s->p.body[i] == 0)
+            r = fmax(r, hypot(s->p.x[2 * i] - xc[0], s->p.x[2 * i + 1] - xc[1]));
+    return r;
+}
+
+static void run(const char *case_file, double end_time, const rd_row *row, double dt, const char *csv, rd_result *r)
 {
     pm_case c;
-    vu_load("tests/verification/cases/rolling_disk.json", &c);
+    vu_load(case_file, &c);
+    c.analysis.end_time = end_time;
     c.method = row->method;
     snprintf(c.shape_function, sizeof c.shape_function, "%s", row->shape_function);
     c.lme_gamma = row->lme_gamma;
@@ -125,6 +162,8 @@ static void run(const rd_row *row, double dt, const char *csv, rd_result *r)
     vu_body_mean(s, 0, v, x0);
     double sum_e2 = 0, fit_num = 0, fit_den = 0, spin_num = 0, spin_den = 0, rise = 0;
     r->ok = 1;
+    r->rise_max = 0;
+    r->reach = body_reach(s, x0);
     for (long k = 1; k <= n_samples && r->ok; k++) {
         for (long j = 0; j < per_sample; j++)
             if (pm_explicit_step(s, dt) != PM_OK) {
@@ -140,6 +179,8 @@ static void run(const rd_row *row, double dt, const char *csv, rd_result *r)
         spin_num += -w * R * v[0];
         spin_den += v[0] * v[0];
         rise = x[1] - x0[1];
+        r->rise_max = fmax(r->rise_max, fabs(rise));
+        r->reach = fmax(r->reach, body_reach(s, x));
         double *h = hist + 6 * k;
         h[0] = t, h[1] = u, h[2] = ue, h[3] = rise, h[4] = v[0], h[5] = -w * R;
     }
@@ -158,9 +199,10 @@ int main(int argc, char **argv)
 {
     vu_init(argc, argv);
     pm_case c;
-    vu_load("tests/verification/cases/rolling_disk.json", &c);
+    vu_load(COARSE_CASE, &c);
     const double dt1 = c.analysis.dt, g = hypot(c.analysis.gravity[0], c.analysis.gravity[1]);
-    const double a_ref = 2.0 / 3.0 * g * c.analysis.gravity[0] / g;
+    const double a_ref = 2.0 / 3.0 * g * c.analysis.gravity[0] / g, T = c.analysis.end_time;
+    const double R = c.bodies[0].shape.radius;
     pm_case_free(&c);
     if (!(dt1 > 0)) {
         fprintf(stderr, "the rolling-disk case needs a fixed analysis.dt\n");
@@ -178,7 +220,7 @@ int main(int argc, char **argv)
             for (char *p = csv; *p; p++)
                 if (*p == ' ')
                     *p = '_';
-            run(row, dt, csv, &res[k]);
+            run(COARSE_CASE, T, row, dt, csv, &res[k]);
             if (!res[k].ok) {
                 fprintf(stderr, "%s, dt = %g: the run stopped early\n", row->label, dt);
                 ok = 0;
@@ -200,6 +242,10 @@ int main(int argc, char **argv)
         ok &= vu_report("rolling disk", q, f->spin, 1.0, f->spin - 1.0, row->tol_spin, f->secs);
         snprintf(q, sizeof q, "%s, dt%d: rise of the centre off the plane at the end (mm)", row->label, n_dt);
         vu_report("rolling disk", q, 1e3 * f->rise, 0.0, 1e3 * f->rise, -1, f->secs);
+        snprintf(q, sizeof q, "%s, dt%d: largest normal displacement of the centre / R", row->label, n_dt);
+        ok &= vu_report("rolling disk", q, f->rise_max / R, 0.0, f->rise_max / R, TOL_RISE, f->secs);
+        snprintf(q, sizeof q, "%s, dt%d: farthest particle from the centre of mass / R", row->label, n_dt);
+        ok &= vu_report("rolling disk", q, f->reach / R, 1.0, f->reach / R - 1.0, TOL_REACH, f->secs);
     }
     return ok ? 0 : 1;
 }
