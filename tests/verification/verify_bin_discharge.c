@@ -30,6 +30,12 @@
  * Beverloo's constant C = W / (rho sqrt(g) (D - D0)^1.5) of each width against their mean. Granular
  * flow in explicit MPM is known to be too mobile (the column collapse runs out too far); the exponent
  * is what this test is about, not C.
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds; a third of the time): the same bin, widths
+ * and judgements with steps three times as long (CFL 0.6 instead of the case's 0.2). The rates do not
+ * depend on the step: measured 121.9, 193.0, 276.6 and 367.6 kg/s per m against 120.7, 191.8, 273.4
+ * and 366.4 at CFL 0.2 (within 1.2 %); exponent 1.54 (1.58 at CFL 0.2, fitted D0 2.3 cells instead
+ * of 2.1), rate ratios 1.01-1.06. The same tolerances: a fluid-like discharge (n near 1) still fails.
  */
 #include "verify_util.h"
 
@@ -46,6 +52,7 @@
 #define MAX_SAMPLES 20000
 #define T_START 0.3 /* after the start-up */
 #define T_END 0.6
+#define SMALL_CFL 0.6 /* the small variant's steps: three times the case's */
 
 static const double widths[N_WIDTH] = {0.1, 0.125, 0.15, 0.175};
 
@@ -101,6 +108,8 @@ static int run_width(double D, history *h, double *secs)
         fprintf(stderr, "D = %g: %s\n", D, pm_error_message());
         return 0;
     }
+    if (vu_small())
+        c.analysis.cfl = SMALL_CFL;
     const double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);
     h->n = 0;

@@ -16,14 +16,22 @@
  * same 2 % tolerance is judged (measured 0.7 %). nu = 0.49 rather than 0.499: the P-wave speed, and
  * with it the step count, grows as 1 / sqrt(1 - 2 nu), and 0.49 already shows a locked error ten
  * times the tolerance.
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds; two fifths of the points and time): the
+ * ring 2 cells high instead of 5. Nothing varies along the axis between the rollers, and every
+ * figure above comes out the same to the six digits printed (sigma_rr -1.63 %, locked 21.5 %, F-bar
+ * -0.72 %), so the tolerances and the locked answer they must reject are the full test's.
  */
 #include "verify_util.h"
+
+#include "pmech/error.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #define TOL 0.02
+#define SMALL_ROWS 2 /* of the case's 5 rows of 0.02 m cells */
 
 /* Run the case with Poisson's ratio nu and the averaging fbar; worst errors of sigma_rr, the hoop
  * stress and sigma_zz relative to B / a^2 (at r0 in at[]) and the innermost particle's radial
@@ -32,6 +40,15 @@ static double run(double nu, pm_fbar_mode fbar, double worst[3], double at[3], d
 {
     pm_case c;
     vu_load("tests/verification/cases/thick_cylinder.json", &c);
+    /* the rollers on both flat faces make the ring one-dimensional in r, so the small variant keeps
+     * fewer rows; set before the struct is edited below (pm_case_set reloads the whole case) */
+    const double height = SMALL_ROWS * c.grid.size[1] / c.grid.cells[1];
+    if (vu_small() && (pm_case_set(&c, "bodies[0].shape.max[1]", height) != PM_OK ||
+                       pm_case_set(&c, "grid.size[1]", height) != PM_OK ||
+                       pm_case_set(&c, "grid.cells[1]", SMALL_ROWS) != PM_OK)) {
+        fprintf(stderr, "small variant: %s\n", pm_error_message());
+        exit(1);
+    }
     pm_material *m = &c.materials[0];
     if (pm_material_set_elastic(m, m->E, nu, NAN, NAN) != 0)
         abort();
