@@ -56,7 +56,7 @@ clean:
 
 # Runs the verification tests and rewrites docs/verification.md.
 verify: build
-	sh tools/verify.sh $(BUILD)
+	JOBS=$(JOBS) sh tools/verify.sh $(BUILD)
 
 # Static analysis and the clang build: both must be silent.
 lint: deps
