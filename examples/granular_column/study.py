@@ -10,7 +10,8 @@ measures the final deposit from the last frame: the front (the particles' x sort
 gap wider than 2 h), the farthest particle, the height at the wall (largest y within h of it), the
 largest volume ratio V / V0, the deposit's volume over the column's, the front's advance over the last 10 % of the run, and two measures
 of the deposit's body that converge where the front does not: where the deposit is 0.1 L0 deep and
-how far the centre of mass moved. Prints one markdown row per run and writes study.csv.
+how far the centre of mass moved. Prints one markdown row per run and writes study.csv. The frames
+are read through examples/frames.py.
 
 Laws (planar collapses, experiments with sand, sugar, rice and glass beads): (L_f - L0) / L0 =
 1.2 a for a < 2.3 and 1.9 a^(2/3) above; H_f / L0 = a for a < 1.15 and a^(2/5) above.
@@ -21,15 +22,15 @@ import copy
 import json
 import math
 import os
-import re
 import shutil
-import struct
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+from frames import frames, read_vtu  # noqa: E402
 
 
 def law_runout(a):
@@ -40,32 +41,9 @@ def law_height(a):
     return a if a < 1.15 else a ** 0.4
 
 
-def arrays(vtu):
-    """Points and the named point arrays of a frame pmech wrote (appended raw binary)."""
-    data = vtu.read_bytes()
-    head, _, tail = data.partition(b'<AppendedData encoding="raw">')
-    raw = tail[tail.index(b"_") + 1:]
-    n = int(re.search(rb'NumberOfPoints="(\d+)"', head).group(1))
-    out = {}
-    for m in re.finditer(rb"<DataArray[^>]*>", head):
-        tag = m.group(0)
-        name, off = re.search(rb'Name="([^"]+)"', tag), re.search(rb'offset="(\d+)"', tag)
-        if not name or not off or b'type="Float64"' not in tag:
-            continue
-        o = int(off.group(1))
-        size = struct.unpack_from("<Q", raw, o)[0]
-        out[name.group(1).decode()] = struct.unpack_from("<%dd" % (size // 8), raw, o + 8)
-    return n, out
-
-
-def frames(out):
-    found = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', (out / "particles.pvd").read_text())
-    return [(float(t), out / f) for t, f in found]
-
-
 def deposit(vtu, h):
-    n, a = arrays(vtu)
-    pts = a["Points"]
+    a = read_vtu(vtu)
+    n, pts = a["n"], a["Points"]
     xs = sorted(pts[3 * i] for i in range(n))
     front = xs[0]
     for x in xs[1:]:
@@ -80,8 +58,8 @@ def thick_point(vtu, thickness):
     """The largest x at which the deposit is at least `thickness` deep: the particles as the boxes of
     their half sizes, the right edge of the farthest box whose top is that high. Unlike the front it
     does not follow a tail thinner than a cell or two, which every refinement resolves further."""
-    n, a = arrays(vtu)
-    pts, hs = a["Points"], a["half_size"]
+    a = read_vtu(vtu)
+    n, pts, hs = a["n"], a["Points"], a["half_size"]
     k = len(hs) // n
     best = 0.0
     for i in range(n):
@@ -91,8 +69,8 @@ def thick_point(vtu, thickness):
 
 
 def centre_x(vtu):
-    n, a = arrays(vtu)
-    m, pts = a["mass"], a["Points"]
+    a = read_vtu(vtu)
+    n, m, pts = a["n"], a["mass"], a["Points"]
     return sum(m[i] * pts[3 * i] for i in range(n)) / sum(m)
 
 

@@ -11,38 +11,18 @@ fraction of the cross-section that moves, the velocity ratio wall/axis); the wal
 along the wall at rest (at the opening) and during the discharge, against Janssen's: the wall's own
 traction (wall_boundary_conditions0.csv, the first friction condition's profile from the contact
 impulses, averaged over the frame interval before each instant) and, beside it, the radial stress of
-the particles in the cell column next to the wall, both averaged over bands of 0.25 m."""
-import csv, math, os, re, struct, sys
+the particles in the cell column next to the wall, both averaged over bands of 0.25 m. The frames are
+read through examples/frames.py."""
+import csv, math, os, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from frames import frames, read_vtu  # noqa: E402
 
 RHO, G, R, H_FILL = 1500.0, 9.81, 1.0, 3.0
 PHI, MU_W = math.radians(25.0), math.tan(math.radians(20.0))
 D_OUT = 0.4                      # outlet diameter (radius 0.2 m)
 C_BEV, K_BEV, D_GRAIN = 0.58, 1.5, 0.0   # Beverloo's constant, edge factor, grain size (a continuum: none)
 T_OPEN = 1.0
-
-
-def read_vtu(path):
-    """The particles of one frame: positions and the point arrays, as flat lists."""
-    raw = open(path, "rb").read()
-    head_end = raw.index(b'<AppendedData encoding="raw">')
-    head = raw[:head_end].decode()
-    base = raw.index(b"_", head_end) + 1
-    n = int(re.search(r'NumberOfPoints="(\d+)"', head).group(1))
-    out = {}
-    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)"([^>]*)format="appended" offset="(\d+)"', head):
-        typ, name, rest, off = m.group(1), m.group(2), m.group(3), int(m.group(4))
-        if typ != "Float64":
-            continue
-        nb = struct.unpack_from("<Q", raw, base + off)[0]
-        out[name] = struct.unpack_from("<%dd" % (nb // 8), raw, base + off + 8)
-    out["n"] = n
-    return out
-
-
-def frames(d):
-    pvd = open(os.path.join(d, "particles.pvd")).read()
-    return [(float(t), os.path.join(d, f)) for t, f in
-            re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)]
 
 
 def beverloo():
