@@ -32,15 +32,8 @@ static const char *dir = ".";
  * s = 0.1 to 0.3 along it. */
 static void make_case(int deg, pm_case *c)
 {
-    const double th = deg * M_PI / 180.0, y0 = 0.4, BW = 0.2, H = 0.06, s0 = 0.1;
-    const double e[2] = {cos(th), -sin(th)}, n[2] = {sin(th), cos(th)};
-    const double p0[2] = {s0 * e[0], y0 + s0 * e[1]};
-    double q[4][2];
-    for (int k = 0; k < 4; k++) {
-        const double a = (k == 1 || k == 2) ? BW : 0.0, b = k >= 2 ? H : 0.0;
-        q[k][0] = p0[0] + a * e[0] + b * n[0];
-        q[k][1] = p0[1] + a * e[1] + b * n[1];
-    }
+    double q[4][PM_DIM];
+    vu_slope_block(deg, 0.4, 0.1, 0.2, 0.06, q);
     char text[4096], path[1024];
     snprintf(text, sizeof text,
              "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": %g,"
@@ -61,45 +54,15 @@ static void make_case(int deg, pm_case *c)
 
 /* Run to T_END: the mean velocity along the slope, the travel of the centre of mass along it, and the
  * slope's mean normal and tangential force on the block over the second half. */
-static int run(int deg, double *v_along, double *travel, double force[2], double *secs)
+static vu_slope run(int deg)
 {
     pm_case c;
     make_case(deg, &c);
-    const double th = deg * M_PI / 180.0, e[2] = {cos(th), -sin(th)};
-    const double t0 = vu_now();
-    pm_sim *s = vu_sim(&c, 1);
-    if (s->contact->n_surfaces != 1 || s->contact->surface[0].kind != PM_CONTACT_EDGES) {
-        fprintf(stderr, "%d deg: the slope is not a wall of mesh edges\n", deg);
-        exit(1);
-    }
-    double v[2], x0[2], x[2];
-    vu_body_mean(s, 0, v, x0);
-    int ok = 1, reset = 0;
-    double t_reset = 0;
-    while (ok && s->t < T_END - 1e-12) {
-        if (!reset && s->t >= 0.5 * T_END) {
-            memset(&s->contact->surface[0].impulse, 0, sizeof s->contact->surface[0].impulse);
-            t_reset = s->t;
-            reset = 1;
-        }
-        double dt = vu_dt(s);
-        if (s->t + dt > T_END)
-            dt = T_END - s->t;
-        if (pm_explicit_step(s, dt) != PM_OK) {
-            fprintf(stderr, "%d deg: %s\n", deg, pm_error_message());
-            ok = 0;
-        }
-    }
-    vu_body_mean(s, 0, v, x);
-    *v_along = v[0] * e[0] + v[1] * e[1];
-    *travel = (x[0] - x0[0]) * e[0] + (x[1] - x0[1]) * e[1];
-    const pm_contact_force *J = &s->contact->surface[0].impulse;
-    force[0] = J->normal / (s->t - t_reset);
-    force[1] = hypot(J->tangent[0], J->tangent[1]) / (s->t - t_reset);
-    *secs = vu_now() - t0;
-    pm_sim_destroy(s);
+    char label[32];
+    snprintf(label, sizeof label, "%d deg", deg);
+    const vu_slope r = vu_slope_run(&c, deg, PM_CONTACT_EDGES, label);
     pm_case_free(&c);
-    return ok;
+    return r;
 }
 
 int main(int argc, char **argv)
@@ -111,8 +74,9 @@ int main(int argc, char **argv)
     const int slides[] = {25, 35};
     for (size_t k = 0; k < sizeof slides / sizeof slides[0]; k++) {
         const double th = slides[k] * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * T_END;
-        double v, u, f[2], secs;
-        ok &= run(slides[k], &v, &u, f, &secs);
+        const vu_slope r = run(slides[k]);
+        const double v = r.v_along, *f = r.force, secs = r.secs;
+        ok &= r.ok;
         char q[112];
         snprintf(q, sizeof q, "%d deg Gmsh slope, mu 0.3: velocity along the slope at 0.2 s (m/s)", slides[k]);
         ok &= vu_report("gmsh_incline", q, v, ref, (v - ref) / ref, 0.02, secs);
@@ -123,8 +87,9 @@ int main(int argc, char **argv)
         ok &= vu_report("gmsh_incline", q, f[1], MU * fn, (f[1] - MU * fn) / (MU * fn), 0.02, secs);
     }
     const double th = 10.0 * M_PI / 180.0, free_dist = 0.5 * G * sin(th) * T_END * T_END;
-    double v, u, f[2], secs;
-    ok &= run(10, &v, &u, f, &secs);
+    const vu_slope r = run(10);
+    const double u = r.travel, *f = r.force, secs = r.secs;
+    ok &= r.ok;
     ok &= vu_report("gmsh_incline", "10 deg Gmsh slope, mu 0.3 (sticks): travel / frictionless travel",
                     u / free_dist, 0.0, u / free_dist, 0.01, secs);
     ok &= vu_report("gmsh_incline", "10 deg: slope's normal force (N/m), mean over 0.1-0.2 s", f[0], W * cos(th),

@@ -50,17 +50,14 @@ static mesh_run run_mesh(pm_case *c, int scale)
     double vol0 = 0, front_before = NAN, xmax;
     for (size_t i = 0; i < s->p.n; i++)
         vol0 += s->p.vol[i];
-    while (s->t < end - 1e-12) {
-        double dt = vu_dt(s);
-        if (s->t + dt > end)
-            dt = end - s->t;
-        if (pm_explicit_step(s, dt) != 0) {
-            fprintf(stderr, "h = L0/%d: stopped at t = %g s: %s\n", (int)(L0 / h + 0.5), s->t, pm_error_message());
-            r.finished = 0;
-            break;
-        }
-        if (isnan(front_before) && s->t >= end - REST_WINDOW)
-            front_before = vu_deposit_front(s, 2 * h, &xmax);
+    int rc = vu_steps_until(s, end, end - REST_WINDOW);
+    if (rc == PM_OK) {
+        front_before = vu_deposit_front(s, 2 * h, &xmax);
+        rc = vu_steps_until(s, end, end);
+    }
+    if (rc != PM_OK) {
+        fprintf(stderr, "h = L0/%d: stopped at t = %g s: %s\n", (int)(L0 / h + 0.5), s->t, pm_error_message());
+        r.finished = 0;
     }
     r.seconds = vu_now() - t0;
     const double front = vu_deposit_front(s, 2 * h, &xmax);

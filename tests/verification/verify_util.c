@@ -1,5 +1,6 @@
 #include "verify_util.h"
 
+#include "contact/contact.h"
 #include "io/plot.h"
 #include "pmech/error.h"
 
@@ -76,6 +77,64 @@ void vu_run_to(pm_sim *s, double end)
 {
     while (vu_advance(s, end))
         ;
+}
+
+int vu_steps_until(pm_sim *s, double end, double mark)
+{
+    while (s->t < end - 1e-12 && s->t < mark) {
+        double dt = vu_dt(s);
+        if (s->t + dt > end)
+            dt = end - s->t;
+        const int rc = pm_explicit_step(s, dt);
+        if (rc != PM_OK)
+            return rc;
+    }
+    return PM_OK;
+}
+
+void vu_slope_block(double theta_deg, double y0, double s0, double width, double height, double q[4][PM_DIM])
+{
+    const double th = theta_deg * M_PI / 180.0;
+    const double e[PM_DIM] = {cos(th), -sin(th)}, n[PM_DIM] = {sin(th), cos(th)};
+    for (int k = 0; k < 4; k++) {
+        const double a = (k == 1 || k == 2) ? width : 0.0, b = k >= 2 ? height : 0.0;
+        for (int d = 0; d < PM_DIM; d++)
+            q[k][d] = (d ? y0 : 0.0) + s0 * e[d] + a * e[d] + b * n[d];
+    }
+}
+
+vu_slope vu_slope_run(const pm_case *c, double theta_deg, pm_contact_kind kind, const char *label)
+{
+    const double th = theta_deg * M_PI / 180.0, e[PM_DIM] = {cos(th), -sin(th)}, end = c->analysis.end_time;
+    const double t0 = vu_now();
+    pm_sim *s = vu_sim(c, 1);
+    if (s->contact->n_surfaces != 1 || s->contact->surface[0].kind != kind) {
+        fprintf(stderr, "%s: the slope is not the case's one contact surface of kind %d\n", label, (int)kind);
+        exit(1);
+    }
+    pm_contact_force *J = &s->contact->surface[0].impulse;
+    double v[PM_DIM], x0[PM_DIM], x[PM_DIM], t_reset = 0;
+    vu_body_mean(s, 0, v, x0);
+    vu_slope r = {.ok = vu_steps_until(s, end, 0.5 * end) == PM_OK};
+    if (r.ok && s->t < end - 1e-12) {
+        memset(J, 0, sizeof *J);
+        t_reset = s->t;
+        r.ok = vu_steps_until(s, end, end) == PM_OK;
+    }
+    if (!r.ok)
+        fprintf(stderr, "%s: %s\n", label, pm_error_message());
+    vu_body_mean(s, 0, v, x);
+    double tangent2 = 0;
+    for (int d = 0; d < PM_DIM; d++) {
+        r.v_along += v[d] * e[d];
+        r.travel += (x[d] - x0[d]) * e[d];
+        tangent2 += J->tangent[d] * J->tangent[d];
+    }
+    r.force[0] = J->normal / (s->t - t_reset);
+    r.force[1] = sqrt(tangent2) / (s->t - t_reset);
+    r.secs = vu_now() - t0;
+    pm_sim_destroy(s);
+    return r;
 }
 
 size_t vu_nearest(const pm_sim *s, double x, double y)

@@ -3,6 +3,7 @@
 #ifndef PMECH_VERIFY_UTIL_H
 #define PMECH_VERIFY_UTIL_H
 
+#include "contact/contact.h"
 #include "pmech/case.h"
 #include "pmech/sim.h"
 #include "solver/sim_internal.h"
@@ -36,6 +37,42 @@ int vu_advance(pm_sim *s, double end);
 
 /** Explicit steps until @p end (vu_advance until it returns 0). */
 void vu_run_to(pm_sim *s, double end);
+
+/**
+ * Explicit steps towards @p end (vu_dt, the last one clipped to @p end) while the time is below
+ * @p mark as well. Unlike vu_run_to(s, mark), the mark clips no step: the steps are those of one run to
+ * @p end, so a test can act at the first step boundary at or after the mark (clear a resultant, take a
+ * measure) and call it again with mark = end to finish the same run. Returns PM_OK, or the failed
+ * step's error code (its message in pm_error_message()) without exiting, so that the test can still
+ * report the run as stopped.
+ */
+int vu_steps_until(pm_sim *s, double end, double mark);
+
+/**
+ * The corners of a @p width x @p height block resting on a slope that runs down to the right from
+ * (0, @p y0) at @p theta_deg degrees: its bottom lies on the slope from @p s0 to s0 + width along it.
+ * Counter-clockwise from the bottom's upper end.
+ */
+void vu_slope_block(double theta_deg, double y0, double s0, double width, double height, double q[4][PM_DIM]);
+
+/** What a block sliding down a slope did over a run (vu_slope_run). */
+typedef struct vu_slope {
+    double v_along;  /**< body 0's mean velocity along the slope at the end */
+    double travel;   /**< its centre of mass's travel along the slope */
+    double force[2]; /**< the slope's mean normal force, and the magnitude of its mean tangential one */
+    double secs;     /**< seconds taken, set-up and run */
+    int ok;          /**< 0 if a step failed: the figures are then those at the failure */
+} vu_slope;
+
+/**
+ * Run case @p c, a block on a slope at @p theta_deg degrees down to the right that is its one contact
+ * surface (surface 0, of kind @p kind: a set-up that made another kind exits 1), on one thread to its end
+ * time with the explicit steps of vu_steps_until. The surface's summed impulse is cleared at the first
+ * step boundary at or after half the end time, so its mean force over the second half (as forces.csv
+ * reports it) is that impulse over the time since. A failed step stops the run and prints
+ * "<label>: <error>".
+ */
+vu_slope vu_slope_run(const pm_case *c, double theta_deg, pm_contact_kind kind, const char *label);
 
 /** Index of the particle nearest to @p x at the start (ties: lowest index). */
 size_t vu_nearest(const pm_sim *s, double x, double y);
