@@ -89,14 +89,8 @@ static double mean_vertical(const pm_sim *s, double y)
 static int check_case(const char *rel, const char *label, const char *csv)
 {
     pm_case c;
-    vu_load(rel, &c);
-    const double t0 = vu_now();
-    pm_sim *s = vu_sim(&c, 1);
-    vu_run_to(s, c.analysis.end_time - WINDOW);
-    pm_contact_profile_reset(s->contact);
-    const double t_from = s->t;
-    vu_run_to(s, c.analysis.end_time);
-    const double secs = vu_now() - t0;
+    double t_from, secs;
+    pm_sim *s = vu_run_profiled(rel, &c, WINDOW, &t_from, &secs);
     const size_t k = wall_surface(s), n = pm_contact_profile_stations(s->contact, k, &s->grid);
     pm_contact_station st[MAX_STATIONS];
     if (n > MAX_STATIONS || pm_contact_profile(s->contact, k, &s->grid, s->t - t_from, st, n) != PM_OK) {

@@ -126,14 +126,8 @@ int main(int argc, char **argv)
     vu_init(argc, argv);
     const char *BENCH = "silo filled by portions, granular (seed 004)";
     pm_case c;
-    vu_load("tests/verification/cases/silo_fill.json", &c);
-    const double t0 = vu_now();
-    pm_sim *s = vu_sim(&c, 1);
-    vu_run_to(s, c.analysis.end_time - WINDOW);
-    pm_contact_profile_reset(s->contact);
-    const double t_from = s->t;
-    vu_run_to(s, c.analysis.end_time);
-    const double secs = vu_now() - t0;
+    double t_from, secs;
+    pm_sim *s = vu_run_profiled("tests/verification/cases/silo_fill.json", &c, WINDOW, &t_from, &secs);
     const pm_particles *p = &s->p;
 
     /* the reference volume, the surface's columns, the bottom layer */

@@ -137,6 +137,19 @@ vu_slope vu_slope_run(const pm_case *c, double theta_deg, pm_contact_kind kind, 
     return r;
 }
 
+pm_sim *vu_run_profiled(const char *rel, pm_case *c, double window, double *t_from, double *secs)
+{
+    vu_load(rel, c);
+    const double t0 = vu_now();
+    pm_sim *s = vu_sim(c, 1);
+    vu_run_to(s, c->analysis.end_time - window);
+    pm_contact_profile_reset(s->contact);
+    *t_from = s->t;
+    vu_run_to(s, c->analysis.end_time);
+    *secs = vu_now() - t0;
+    return s;
+}
+
 size_t vu_nearest(const pm_sim *s, double x, double y)
 {
     size_t best = 0;

@@ -74,6 +74,14 @@ typedef struct vu_slope {
  */
 vu_slope vu_slope_run(const pm_case *c, double theta_deg, pm_contact_kind kind, const char *label);
 
+/**
+ * Load case @p rel into @p c (vu_load) and run it on one thread to its end time, the contact surfaces'
+ * traction profiles (pm_contact_profile) gathered over the last @p window seconds only: the run stops
+ * exactly at end - window, clears them, and goes on. Gives the time they were cleared at in *t_from and
+ * the seconds taken (set-up and run) in *secs; returns the simulation, for the caller to destroy.
+ */
+pm_sim *vu_run_profiled(const char *rel, pm_case *c, double window, double *t_from, double *secs);
+
 /** Index of the particle nearest to @p x at the start (ties: lowest index). */
 size_t vu_nearest(const pm_sim *s, double x, double y);
 
