@@ -89,43 +89,11 @@ static int block_on_obstacle(void)
     return ok;
 }
 
-static void slide(double mu, double ramp, double v[2], double dx[2], double *secs)
-{
-    pm_case c;
-    vu_load("tests/verification/cases/implicit_sliding_block.json", &c);
-    c.bcs[0].coefficient = mu;
-    c.analysis.gravity_ramp_time = ramp;
-    const double t0 = vu_now();
-    pm_sim *s = vu_sim(&c, 1);
-    double x0[2], x[2];
-    vu_body_mean(s, 0, v, x0);
-    run_implicit(s, c.analysis.end_time);
-    vu_body_mean(s, 0, v, x);
-    dx[0] = x[0] - x0[0];
-    dx[1] = x[1] - x0[1];
-    *secs = vu_now() - t0;
-    pm_sim_destroy(s);
-    pm_case_free(&c);
-}
-
 int main(int argc, char **argv)
 {
     vu_init(argc, argv);
     int ok = block_on_obstacle();
-    const double g = 9.81, th = 30.0 * M_PI / 180.0, t = 0.1;
-    const double mus[2] = {0.0, 0.1};
-    for (int k = 0; k < 2; k++) {
-        double v[2], dx[2], secs = 0;
-        slide(mus[k], 0.0, v, dx, &secs);
-        const double ref = g * (sin(th) - mus[k] * cos(th)) * t;
-        char q[80];
-        snprintf(q, sizeof q, "mean velocity at 0.1 s (m/s), implicit, mu = %.1f", mus[k]);
-        ok &= vu_report("implicit sliding block", q, v[0], ref, (v[0] - ref) / ref, 0.02, secs);
-    }
-    double v[2], dx[2], secs = 0;
-    slide(1.5 * tan(th), 0.02, v, dx, &secs);
-    const double free_dist = 0.5 * g * sin(th) * t * t;
-    ok &= vu_report("implicit sliding block", "centre-of-mass travel / frictionless, mu = 1.5 tan(theta)",
-                    dx[0] / free_dist, 0.0, dx[0] / free_dist, 0.01, secs);
+    ok &= vu_sliding_block("implicit sliding block", "tests/verification/cases/implicit_sliding_block.json",
+                           ", implicit", run_implicit, 0.01);
     return ok ? 0 : 1;
 }

@@ -150,6 +150,48 @@ pm_sim *vu_run_profiled(const char *rel, pm_case *c, double window, double *t_fr
     return s;
 }
 
+/* One run of the sliding block: body 0's mean velocity at the end and its centre of mass's travel. */
+static void slide(const char *rel, double mu, double ramp, vu_runner run, double v[PM_DIM], double dx[PM_DIM],
+                  double *secs)
+{
+    pm_case c;
+    vu_load(rel, &c);
+    c.bcs[0].coefficient = mu;
+    c.analysis.gravity_ramp_time = ramp;
+    const double t0 = vu_now();
+    pm_sim *s = vu_sim(&c, 1);
+    double x0[PM_DIM], x[PM_DIM];
+    vu_body_mean(s, 0, v, x0);
+    run(s, c.analysis.end_time);
+    vu_body_mean(s, 0, v, x);
+    for (int d = 0; d < PM_DIM; d++)
+        dx[d] = x[d] - x0[d];
+    *secs = vu_now() - t0;
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+}
+
+int vu_sliding_block(const char *bench, const char *rel, const char *what, vu_runner run, double stick_tol)
+{
+    const double g = 9.81, th = 30.0 * M_PI / 180.0, t = 0.1;
+    const double mus[2] = {0.0, 0.1};
+    int ok = 1;
+    for (int k = 0; k < 2; k++) {
+        double v[PM_DIM], dx[PM_DIM], secs = 0;
+        slide(rel, mus[k], 0.0, run, v, dx, &secs);
+        const double ref = g * (sin(th) - mus[k] * cos(th)) * t;
+        char q[96];
+        snprintf(q, sizeof q, "mean velocity at 0.1 s (m/s)%s, mu = %.1f", what, mus[k]);
+        ok &= vu_report(bench, q, v[0], ref, (v[0] - ref) / ref, 0.02, secs);
+    }
+    double v[PM_DIM], dx[PM_DIM], secs = 0;
+    slide(rel, 1.5 * tan(th), 0.02, run, v, dx, &secs);
+    const double free_dist = 0.5 * g * sin(th) * t * t;
+    ok &= vu_report(bench, "centre-of-mass travel / frictionless, mu = 1.5 tan(theta)", dx[0] / free_dist, 0.0,
+                    dx[0] / free_dist, stick_tol, secs);
+    return ok;
+}
+
 size_t vu_nearest(const pm_sim *s, double x, double y)
 {
     size_t best = 0;

@@ -82,6 +82,22 @@ vu_slope vu_slope_run(const pm_case *c, double theta_deg, pm_contact_kind kind, 
  */
 pm_sim *vu_run_profiled(const char *rel, pm_case *c, double window, double *t_from, double *secs);
 
+/** A way to run a simulation to time @p end (vu_run_to, or a test's implicit steps). */
+typedef void (*vu_runner)(pm_sim *s, double end);
+
+/**
+ * The sliding-block benchmark shared by the explicit and the implicit solver: the case @p rel is a
+ * block on a friction boundary (its first boundary condition) under gravity tilted by 30 degrees, run
+ * to 0.1 s by @p run. The rigid-body answer while it slides is the mean velocity
+ * g (sin(theta) - mu cos(theta)) t: with mu = 0 and 0.1 each within 2 %. With mu = 1.5 tan(theta) it
+ * sticks, gravity ramped over 20 ms (a sudden load makes the elastic block bounce on its base, and a
+ * node lifted off carries no friction; the answer, no travel, is unchanged): its centre of mass's travel
+ * over the frictionless g sin(theta) t^2 / 2 within @p stick_tol. Reports the three rows under @p bench,
+ * @p what put into the velocity rows' names after the unit (e.g. ", implicit", or ""). Returns 1 if all
+ * three pass.
+ */
+int vu_sliding_block(const char *bench, const char *rel, const char *what, vu_runner run, double stick_tol);
+
 /** Index of the particle nearest to @p x at the start (ties: lowest index). */
 size_t vu_nearest(const pm_sim *s, double x, double y);
 
