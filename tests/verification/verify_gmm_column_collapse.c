@@ -50,18 +50,6 @@ typedef struct result {
     long steps;
 } result;
 
-static void measure(const pm_sim *s, double *runout, double *height)
-{
-    double xm = -INFINITY, ym = -INFINITY;
-    for (size_t i = 0; i < s->p.n; i++) {
-        xm = fmax(xm, s->p.x[2 * i]);
-        if (s->p.x[2 * i] < 0.1)
-            ym = fmax(ym, s->p.x[2 * i + 1]);
-    }
-    *runout = xm;
-    *height = ym;
-}
-
 /* One explicit MUSL run of the coarse column with the given method and approximation; cond_tol
  * NAN keeps the approximation's default. */
 static result run(pm_method method, const char *shape, double cond_tol)
@@ -81,22 +69,9 @@ static result run(pm_method method, const char *shape, double cond_tol)
     result r = {0};
     const double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);
-    int k = 0;
-    while (k < n_snap) {
-        double dt = vu_dt(s);
-        if (s->t + dt > snap_t[k])
-            dt = snap_t[k] - s->t;
-        if (pm_explicit_step(s, dt) != 0) {
-            fprintf(stderr, "%s/%s stopped at t = %g: %s\n", method == PM_METHOD_GMM ? "gmm" : "mpm", shape, s->t,
-                    pm_error_message());
-            break;
-        }
-        r.steps++;
-        if (s->t >= snap_t[k] - 1e-9) {
-            measure(s, &r.runout[k], &r.height[k]);
-            k++;
-        }
-    }
+    char label[32];
+    snprintf(label, sizeof label, "%s/%s", method == PM_METHOD_GMM ? "gmm" : "mpm", shape);
+    r.steps = vu_collapse_run(s, snap_t, n_snap, NULL, NULL, label, r.runout, r.height);
     r.t_end = s->t;
     r.secs = vu_now() - t0;
     printf("%s/%s: %ld steps to t = %.4g s, %.1f s, %.3g M particle-steps/s\n",

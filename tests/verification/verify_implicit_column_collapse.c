@@ -47,16 +47,17 @@ typedef struct result {
     long steps, iterations, cuts;
 } result;
 
-static void measure(const pm_sim *s, double *runout, double *height)
+/* One implicit step, its Newton iterations, cuts and times added to the run's result. */
+static int implicit_step(pm_sim *s, double dt, void *ctx)
 {
-    double xm = -INFINITY, ym = -INFINITY;
-    for (size_t i = 0; i < s->p.n; i++) {
-        xm = fmax(xm, s->p.x[2 * i]);
-        if (s->p.x[2 * i] < 0.1)
-            ym = fmax(ym, s->p.x[2 * i + 1]);
-    }
-    *runout = xm;
-    *height = ym;
+    result *r = ctx;
+    pm_implicit_report rep;
+    const int rc = pm_implicit_step(s, dt, NULL, &rep);
+    r->iterations += rep.iterations;
+    r->cuts += rep.step_cuts;
+    r->assemble += rep.assemble_seconds;
+    r->solve += rep.solve_seconds;
+    return rc;
 }
 
 static result run(pm_case *c, int implicit)
@@ -70,33 +71,8 @@ static result run(pm_case *c, int implicit)
     }
     const double t0 = vu_now();
     pm_sim *s = vu_sim(c, 1);
-    int k = 0;
-    while (k < n_snap) {
-        double dt = implicit ? c->analysis.dt : vu_dt(s);
-        if (s->t + dt > snap_t[k])
-            dt = snap_t[k] - s->t;
-        int rc;
-        if (implicit) {
-            pm_implicit_report rep;
-            rc = pm_implicit_step(s, dt, NULL, &rep);
-            r.iterations += rep.iterations;
-            r.cuts += rep.step_cuts;
-            r.assemble += rep.assemble_seconds;
-            r.solve += rep.solve_seconds;
-        } else {
-            rc = pm_explicit_step(s, dt);
-        }
-        if (rc != 0) {
-            fprintf(stderr, "%s step failed at t = %g: %s\n", implicit ? "implicit" : "explicit", s->t,
-                    pm_error_message());
-            break;
-        }
-        r.steps++;
-        if (s->t >= snap_t[k] - 1e-9) {
-            measure(s, &r.runout[k], &r.height[k]);
-            k++;
-        }
-    }
+    r.steps = vu_collapse_run(s, snap_t, n_snap, implicit ? implicit_step : NULL, &r,
+                              implicit ? "implicit" : "explicit", r.runout, r.height);
     r.t_end = s->t;
     r.secs = vu_now() - t0;
     pm_sim_destroy(s);

@@ -192,6 +192,35 @@ int vu_sliding_block(const char *bench, const char *rel, const char *what, vu_ru
     return ok;
 }
 
+long vu_collapse_run(pm_sim *s, const double *at, int n, vu_step_fn step, void *ctx, const char *label,
+                     double *runout, double *height)
+{
+    long steps = 0;
+    int k = 0;
+    while (k < n) {
+        double dt = vu_dt(s);
+        if (s->t + dt > at[k])
+            dt = at[k] - s->t;
+        if ((step ? step(s, dt, ctx) : pm_explicit_step(s, dt)) != PM_OK) {
+            fprintf(stderr, "%s: stopped at t = %g: %s\n", label, s->t, pm_error_message());
+            break;
+        }
+        steps++;
+        if (s->t >= at[k] - 1e-9) {
+            double xm = -INFINITY, ym = -INFINITY;
+            for (size_t i = 0; i < s->p.n; i++) {
+                xm = fmax(xm, s->p.x[PM_DIM * i]);
+                if (s->p.x[PM_DIM * i] < 0.1)
+                    ym = fmax(ym, s->p.x[PM_DIM * i + 1]);
+            }
+            runout[k] = xm;
+            height[k] = ym;
+            k++;
+        }
+    }
+    return steps;
+}
+
 size_t vu_nearest(const pm_sim *s, double x, double y)
 {
     size_t best = 0;

@@ -98,6 +98,20 @@ typedef void (*vu_runner)(pm_sim *s, double end);
  */
 int vu_sliding_block(const char *bench, const char *rel, const char *what, vu_runner run, double stick_tol);
 
+/** One step of @p dt by a test's solver (e.g. implicit, its report kept in @p ctx); PM_OK or the error. */
+typedef int (*vu_step_fn)(pm_sim *s, double dt, void *ctx);
+
+/**
+ * A soil column collapsing away from a smooth wall at x = 0, run through the ascending times
+ * @p at[0..n-1] with steps of vu_dt (the step before each time clipped to reach it) taken by @p step
+ * (NULL: pm_explicit_step). At each time the run-out, the largest x of all points, in runout[k], and the
+ * height at the wall, the largest y of the points within 0.1 m of it, in height[k]. A failed step stops
+ * the run with "<label>: stopped at t = ...: <error>" on stderr, the times not reached left unset.
+ * Returns the number of steps taken; the time reached is s->t.
+ */
+long vu_collapse_run(pm_sim *s, const double *at, int n, vu_step_fn step, void *ctx, const char *label,
+                     double *runout, double *height);
+
 /** Index of the particle nearest to @p x at the start (ties: lowest index). */
 size_t vu_nearest(const pm_sim *s, double x, double y);
 
