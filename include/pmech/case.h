@@ -155,6 +155,8 @@ typedef struct pm_case_obstacle {
     pm_obstacle_law law;
     double friction;              /**< Coulomb coefficient >= 0; INFINITY for "no_slip" */
     double penalty_factor;        /**< penalty law: multiplies the default stiffness (default 1) */
+    int at_particles;             /**< nodal law of an MPM run without contact_pairs: 1 to act at the
+                                       particles that touch it (acts_at "particles"), 0 (default) node by node */
 } pm_case_obstacle;
 
 /** loads[]: a force on a set of particles, shared by their initial volumes. */

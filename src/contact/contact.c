@@ -39,7 +39,6 @@ void pm_contact_destroy(pm_contact *ct)
     free(ct->held_next);
     free(ct->pt);
     free(ct->side_nbr);
-    free(ct->pt_before);
     free(ct->pt_impulse);
     free(ct);
 }
@@ -242,6 +241,7 @@ int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double w
     sf->axis = -1;
     sf->motion = ob->velocity;
     sf->stiffness = ob->penalty_factor * (wave / h) * (wave / h);
+    sf->at_particles = ob->at_particles;
     if (ob->type == PM_OBSTACLE_CIRCLE) {
         sf->kind = PM_CONTACT_CIRCLE;
         for (int d = 0; d < PM_DIM; d++)
@@ -331,18 +331,26 @@ int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap)
 #if PM_DIM != 2
 #error "a node set's neighbours are ordered along a line"
 #endif
-    if (!ct || !ct->n_fixed || !g->x)
+    if (!ct || !g->x)
         return PM_OK;
     /* a particle sets a point only within half a cell of a node set (detect.c): up to 18 per node of
-     * the set at 6 x 6 points per cell, so the list follows the nodes rather than the particles */
-    if (cap > 32 * ct->n_fixed)
-        cap = 32 * ct->n_fixed;
-    ct->pt = malloc((cap ? cap : 1) * sizeof *ct->pt);
-    ct->side_nbr = malloc(2 * ct->n_fixed * sizeof *ct->side_nbr);
-    ct->pt_before = malloc(PM_DIM * ct->n_fixed * sizeof *ct->pt_before);
-    ct->pt_impulse = malloc(PM_DIM * ct->n_fixed * sizeof *ct->pt_impulse);
-    side_key *key = malloc(ct->n_fixed * sizeof *key);
-    if (!ct->pt || !ct->side_nbr || !ct->pt_before || !ct->pt_impulse || !key) {
+     * the set at 6 x 6 points per cell, so the list follows the nodes rather than the particles; on an
+     * obstacle, the particles with a gap within half a cell: a band about 0.6 of a cell deep at 6 x 6
+     * points per cell, some 22 per cell of its length, and room for three times that (material heaped
+     * against it, the round of a corner); a step that finds more lets the surface act node by node */
+    size_t want = ct->n_fixed ? (cap < 32 * ct->n_fixed ? cap : 32 * ct->n_fixed) : 0, want_ob = 0;
+    for (size_t k = 0; k < ct->n_surfaces; k++)
+        if (ct->surface[k].kind != PM_CONTACT_NODE_SET && pm_contact_takes_points(&ct->surface[k]))
+            want_ob += 64 * ((size_t)ceil(pm_contact_length(ct, k, g) / g->h_min) + 8);
+    want += want_ob < cap ? want_ob : cap;
+    if (!want)
+        return PM_OK;
+    const size_t rows = ct->cap ? ct->cap : 1; /* every entry any surface may have in a step */
+    ct->pt = malloc(want * sizeof *ct->pt);
+    ct->side_nbr = malloc(2 * (ct->n_fixed ? ct->n_fixed : 1) * sizeof *ct->side_nbr);
+    ct->pt_impulse = malloc(PM_CONTACT_PT_ROW * rows * sizeof *ct->pt_impulse);
+    side_key *key = malloc((ct->n_fixed ? ct->n_fixed : 1) * sizeof *key);
+    if (!ct->pt || !ct->side_nbr || !ct->pt_impulse || !key) {
         free(key);
         return pm_error_set(PM_ENOMEM, "out of memory for the contact points");
     }
@@ -364,7 +372,7 @@ int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap)
         }
     }
     free(key);
-    ct->pt_cap = cap;
+    ct->pt_cap = want;
     ct->node_x = g->x;
     return PM_OK;
 }

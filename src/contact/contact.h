@@ -25,17 +25,22 @@
  *                       when a node's cell holds material; and, for the nodal law of a node set (an
  *                       MPM `friction` side or line) once pm_contact_points_reserve() has been called,
  *                       the touching points: the foot on the surface of every particle within half a
- *                       cell of it, between two neighbouring nodes of the set, with its own gap.
+ *                       cell of it, between two neighbouring nodes of the set, with its own gap; for
+ *                       the nodal law of an obstacle (polyline, polygon, circle) that acts at the
+ *                       particles (acts_at), every particle whose gap is within half a cell, acting
+ *                       through its stencil's candidate nodes.
  *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law on every contact node
  *                       that carries mass, on its velocity relative to the surface, then the node's
  *                       prescribed components, then the node's acceleration again as (v - v0) /
  *                       dt_acc. The nodal law lets a node approach by its gap in the step and removes
  *                       the rest of its approaching velocity (Bardenhagen et al. 2000), the penalty
  *                       law pushes by stiffness x penetration x dt; both cut the slip by up to mu
- *                       times their normal change. A node set with touching points takes the nodal
- *                       law at the points instead (friction.c): the velocity interpolated at each
- *                       point, not each node's, may approach by the point's gap and no more, so the
- *                       reaction acts where the material touches, between the nodes. The resultant
+ *                       times their normal change. A node set or obstacle with touching points takes
+ *                       the nodal law at the points instead (friction.c): the velocity interpolated at
+ *                       each point, not each node's, may approach by the point's gap and no more, so
+ *                       the reaction acts where the material touches, between the nodes; on an
+ *                       obstacle acting at the particles, a node is held only as far as the touching
+ *                       particles' own velocities need. The resultant
  *                       force of every surface (m dv / dt, summed over its nodes) is kept for
  *                       pm_contact_force_of().
  *   pm_contact_project_normal
@@ -172,6 +177,10 @@ typedef struct pm_contact_surface {
                                   impulse (as in impulse) the law gave that node since a reader reset
                                   them: the wall's traction profile (pm_contact_profile) */
     double step[PM_DIM];     /**< implicit steps: the obstacle's displacement over the step being solved */
+    int at_particles;        /**< obstacle with the nodal law: acts at the particles that touch it (the case's
+                                  acts_at "particles") once points are reserved */
+    int points_lost;         /**< 1: the last pm_contact_gaps() found more touching points than there was
+                                  room for, so its law acts node by node in this step */
 } pm_contact_surface;
 
 /** A node touching a surface. */
@@ -189,17 +198,31 @@ typedef struct pm_contact_node {
                                   every pm_contact_gaps() */
 } pm_contact_node;
 
-/** Where the material's surface touches a node-set surface between two of its nodes (explicit steps,
- *  pm_contact_points_reserve): the nodal law then acts on the velocity interpolated there. */
+/** Nodes a touching point acts through at most: a node set's two either side of it; an obstacle's, the
+ *  stencil nodes of the touching particle that are its candidates (linear 4, uGIMP and B-spline up to 9;
+ *  of a wider stencil, the largest shape functions). */
+#define PM_CONTACT_POINT_NODES 16
+
+/** Where the material's surface touches a surface (explicit steps, pm_contact_points_reserve): the
+ *  nodal law then acts on the velocity interpolated there. On a node set the point is a particle's foot
+ *  between two of its nodes; on an obstacle it is the touching particle itself, the law acting on the
+ *  velocity its stencil gives it, i.e. on the motion that would carry it into the obstacle. */
 typedef struct pm_contact_point {
     int32_t surface;         /**< index in pm_contact::surface */
-    int32_t node[PM_DIM];    /**< the surface's nodes either side of the point (-1: none) */
-    int32_t entry[PM_DIM];   /**< their entries in pm_contact::node (-1: none) */
-    double w[PM_DIM];        /**< their linear shape functions at the point, along the surface */
+    int32_t n;               /**< nodes in node[], entry[], w[] */
+    int32_t node[PM_CONTACT_POINT_NODES];  /**< the nodes it acts through (-1: none) */
+    int32_t entry[PM_CONTACT_POINT_NODES]; /**< their entries in pm_contact::node (-1: none) */
+    double w[PM_CONTACT_POINT_NODES];      /**< their shape functions at the point (summing to 1) */
+    double normal[PM_DIM];   /**< into the surface at the point */
     double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
+    double mass;             /**< obstacle: the touching particle's mass, the least a node answers its
+                                  impulse with (node set: 0, every node with its own) */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
 } pm_contact_point;
+
+/** Values per entry in pm_contact::pt_impulse. */
+#define PM_CONTACT_PT_ROW (1 + 2 * PM_DIM)
 
 /** The surfaces of a simulation and the nodes touching them. */
 typedef struct pm_contact {
@@ -224,11 +247,29 @@ typedef struct pm_contact {
     pm_contact_point *pt;    /**< explicit steps: where the material touches node-set surfaces */
     int32_t *side_nbr;       /**< per node-set entry: the entries before and after it along its surface
                                   (-1 at an end), 2 per entry */
-    double *pt_before;       /**< per node-set entry: its velocity before the law, PM_DIM each */
-    double *pt_impulse;      /**< per node-set entry: the impulse its surface's points gave its node, PM_DIM
-                                  each (a node two sets share gets each set's own) */
+    double *pt_impulse;      /**< per entry, PM_CONTACT_PT_ROW values: the normal push (sum of w lam_n), the
+                                  impulse and its tangential part (PM_DIM each) its surface's points gave
+                                  its node (a node two surfaces share gets each surface's own) */
     const double *node_x;    /**< the node positions the points are placed between (the grid's) */
 } pm_contact;
+
+/** Whether surface @p sf can act at touching points (pm_contact_points_reserve): the nodal law of a node
+ *  set, or of an obstacle that asks for it (pm_contact_surface::at_particles). */
+static inline int pm_contact_takes_points(const pm_contact_surface *sf)
+{
+    if (sf->law != PM_CONTACT_LAW_NODAL_COULOMB)
+        return 0;
+    return sf->kind == PM_CONTACT_NODE_SET || (sf->at_particles && (sf->kind == PM_CONTACT_POLYLINE ||
+                                                                    sf->kind == PM_CONTACT_POLYGON ||
+                                                                    sf->kind == PM_CONTACT_CIRCLE));
+}
+
+/** Whether surface @p sf acts at touching points in this step: it can, points are reserved, and the last
+ *  pm_contact_gaps() had room for all of its points. */
+static inline int pm_contact_at_points(const pm_contact *ct, const pm_contact_surface *sf)
+{
+    return ct->pt_cap > 0 && !sf->points_lost && pm_contact_takes_points(sf);
+}
 
 /** The nodal arrays one application works on (one body's field). */
 typedef struct pm_contact_field {
@@ -292,9 +333,10 @@ int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double nor
 int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double wave, double h);
 
 /**
- * Let the nodal law of every node-set surface act where the material touches it instead of node by
- * node, for up to @p cap particles (explicit steps of a single-field MPM run; see pm_contact_gaps).
- * @p g gives the node positions. Call once after pm_contact_create(). @return PM_OK, PM_ENOMEM
+ * Let the nodal law of every node-set surface, and of every obstacle that asks for it
+ * (pm_contact_surface::at_particles), act where the material touches it instead of node by node, for up
+ * to @p cap particles (explicit steps of a single-field MPM run; see pm_contact_gaps). @p g gives the
+ * node positions and the cell size. Call once after pm_contact_create(). @return PM_OK, PM_ENOMEM
  */
 int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap);
 

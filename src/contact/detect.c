@@ -144,8 +144,10 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, dou
 #if PM_DIM != 2
 #error "a point lies between two nodes of a line"
 #endif
-    if (ct->n_pt >= ct->pt_cap)
+    if (ct->n_pt >= ct->pt_cap) {
+        ct->surface[k].points_lost = 1;
         return;
+    }
     const double *xa = ct->node_x + PM_DIM * ct->node[e].node;
     const double foot[PM_DIM] = {xp[0] + sd * n[0], xp[1] + sd * n[1]};
     const double t[PM_DIM] = {-n[1], n[0]}, along = (foot[0] - xa[0]) * t[0] + (foot[1] - xa[1]) * t[1];
@@ -164,6 +166,9 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, dou
     }
     pm_contact_point *q = &ct->pt[ct->n_pt++];
     q->surface = (int32_t)k;
+    q->n = 2;
+    for (int d = 0; d < PM_DIM; d++)
+        q->normal[d] = ct->surface[k].normal[d];
     q->node[0] = ct->node[e].node;
     q->entry[0] = e;
     q->w[0] = 1.0 - s;
@@ -171,15 +176,66 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, dou
     q->entry[1] = b;
     q->w[1] = b >= 0 ? s : 0.0;
     q->allow = gap > 0 ? gap : 0.0; /* divided by dt in the law */
+    q->mass = 0.0;
+}
+
+/* A point where a particle (stencil st, normal n into obstacle k, gap, mass mp) may touch an obstacle:
+ * the particle itself, through those of its stencil's nodes that are the obstacle's candidates (slot),
+ * so that the law holds the velocity that carries it and no node further than that velocity needs. */
+static void add_touch(pm_contact *ct, size_t k, const pm_stencil *st, const double n[PM_DIM], double gap,
+                      double mp)
+{
+    if (ct->n_pt >= ct->pt_cap) {
+        ct->surface[k].points_lost = 1;
+        return;
+    }
+    pm_contact_point *q = &ct->pt[ct->n_pt];
+    int m = 0;
+    for (int j = 0; j < st->n; j++) {
+        const int32_t e = ct->slot[st->node[j]];
+        if (e < 0 || !(st->N[j] > 0))
+            continue;
+        int at = m;
+        if (m == PM_CONTACT_POINT_NODES) { /* a wide stencil: its largest shape functions */
+            at = 0;
+            for (int i = 1; i < m; i++)
+                if (q->w[i] < q->w[at])
+                    at = i;
+            if (!(st->N[j] > q->w[at]))
+                continue;
+        } else {
+            m++;
+        }
+        q->node[at] = st->node[j];
+        q->entry[at] = e;
+        q->w[at] = st->N[j];
+    }
+    double sum = 0.0;
+    for (int i = 0; i < m; i++)
+        sum += q->w[i];
+    if (!(sum > 0))
+        return;
+    /* the candidates' share of a stencil reaching beyond them stands for the whole particle */
+    for (int i = 0; i < m; i++)
+        q->w[i] /= sum;
+    q->n = m;
+    q->surface = (int32_t)k;
+    for (int d = 0; d < PM_DIM; d++)
+        q->normal[d] = n[d];
+    q->allow = gap > 0 ? gap : 0.0;
+    q->mass = mp;
+    ct->n_pt++;
 }
 
 /* The gaps of the entries [first, last) of surface k from the particles near it. */
 static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, const pm_approx *a,
                          const pm_particles *p)
 {
-    const pm_contact_surface *sf = &ct->surface[k];
-    /* the nodal law of a node set acts where the material touches it, once points are reserved */
-    const int points = ct->pt_cap > 0 && sf->kind == PM_CONTACT_NODE_SET && sf->law == PM_CONTACT_LAW_NODAL_COULOMB;
+    pm_contact_surface *sf = &ct->surface[k];
+    /* the nodal law of a node set or an obstacle acts where the material touches it, once points are
+     * reserved */
+    sf->points_lost = 0;
+    const int points = ct->pt_cap > 0 && pm_contact_takes_points(sf);
     for (size_t e = first; e < last; e++) {
         ct->slot[ct->node[e].node] = (int32_t)e;
         ct->node[e].gap = INFINITY; /* no particle in the node's support: nothing to touch */
@@ -230,8 +286,12 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
                         ct->node[e].normal[d] = n[d];
             }
         }
-        if (points && e_max >= 0 && gap <= 0.25 * ct->reach)
-            add_point(ct, k, e_max, p->x + PM_DIM * i, sd, n, gap);
+        if (points && gap <= 0.25 * ct->reach) {
+            if (sf->kind != PM_CONTACT_NODE_SET)
+                add_touch(ct, k, &st, n, gap, p->mass[i]);
+            else if (e_max >= 0)
+                add_point(ct, k, e_max, p->x + PM_DIM * i, sd, n, gap);
+        }
     }
     /* a node held by both faces of a corner has two entries side by side, and the slot named the last */
     for (size_t e = last; e-- > first + 1;)

@@ -106,10 +106,41 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
         J[1 + d] += m * (dv[d] - dvn * cn->normal[d]);
 }
 
-/* Whether the nodal law of surface sf acts at the material's touching points (pm_contact_points_reserve). */
+/* The impulse the touching points gave one entry's node (pm_contact::pt_impulse, PM_CONTACT_PT_ROW values:
+ * its normal push, the impulse, its tangential part), as a force on the material, into its surface's
+ * resultant. Split at the points, each along its own normal: an obstacle's points near a node may push
+ * along normals that are not the node's. */
+static void add_point_force(pm_contact_surface *sf, int32_t node, const double *row, double dt)
+{
+    const double *J = row + 1, *Jt = row + 1 + PM_DIM;
+    sf->f.normal += row[0] / dt;
+    sf->impulse.normal += row[0];
+    for (int d = 0; d < PM_DIM; d++) {
+        sf->f.force[d] += J[d] / dt;
+        sf->f.tangent[d] += Jt[d] / dt;
+        sf->impulse.force[d] += J[d];
+        sf->impulse.tangent[d] += Jt[d];
+    }
+    double *P = sf->node_impulse + (size_t)(1 + PM_DIM) * (size_t)node;
+    P[0] += row[0];
+    for (int d = 0; d < PM_DIM; d++)
+        P[1 + d] += Jt[d];
+}
+
+/* Whether the nodal law of surface sf acts at the material's touching points in this step. */
 static inline int at_points(const pm_contact *ct, const pm_contact_surface *sf)
 {
-    return ct->pt_cap > 0 && sf->kind == PM_CONTACT_NODE_SET && sf->law == PM_CONTACT_LAW_NODAL_COULOMB;
+    return pm_contact_at_points(ct, sf);
+}
+
+/* The mass with which a node of mass m answers point pt's impulse. A node that carries less than the
+ * touching particle (the particle sits at the edge of its support, its shape function there small)
+ * answers as if it carried the particle: the cheapest way to stop a particle is otherwise to fling
+ * such a node, by up to 1 / w times the particle's own change, and the particles' strain rates
+ * (dN/dx is not small there) with it; a footing's run on h = 0.025 m diverged so. */
+static inline double answer_mass(const pm_contact_point *pt, double m)
+{
+    return pt->mass > m ? pt->mass : m;
 }
 
 /* Sweeps of the point law at most, and the velocity change at every point below which they stop. */
@@ -138,16 +169,25 @@ static void points_law(pm_contact *ct, pm_contact_field f, double dt)
         for (size_t q = 0; q < ct->n_pt; q++) {
             pm_contact_point *pt = &ct->pt[q];
             const pm_contact_surface *sf = &ct->surface[pt->surface];
-            const double *nrm = sf->normal;
+            if (sf->points_lost)
+                continue;
+            const double *nrm = pt->normal;
+            /* a moving obstacle: the law acts on the velocity relative to it */
+            double rel[PM_DIM] = {0}, rel_n = 0.0;
+            if (sf->motion) {
+                for (int d = 0; d < PM_DIM; d++)
+                    rel[d] = sf->vel[d];
+                rel_n = dot(rel, nrm);
+            }
             double denom = 0.0, vn = 0.0, vt[PM_DIM] = {0};
-            double w_m[PM_DIM] = {0}; /* w / m of each node, 0 where it carries no material */
-            for (int j = 0; j < PM_DIM; j++) {
+            double w_m[PM_CONTACT_POINT_NODES] = {0}; /* w / m of each node, 0 where it carries no material */
+            for (int j = 0; j < pt->n; j++) {
                 const int32_t I = pt->node[j];
                 if (I < 0 || !(f.mass[I] > f.mass_floor) || pt->w[j] == 0)
                     continue;
-                w_m[j] = pt->w[j] / f.mass[I];
+                w_m[j] = pt->w[j] / answer_mass(pt, f.mass[I]);
                 denom += pt->w[j] * w_m[j];
-                vn += pt->w[j] * dot(f.v + PM_DIM * I, nrm);
+                vn += pt->w[j] * (sf->motion ? dot(f.v + PM_DIM * I, nrm) - rel_n : dot(f.v + PM_DIM * I, nrm));
             }
             if (!(denom > 0))
                 continue;
@@ -155,17 +195,17 @@ static void points_law(pm_contact *ct, pm_contact_field f, double dt)
             if (pt->lam_n + dl < 0)
                 dl = -pt->lam_n;
             pt->lam_n += dl;
-            for (int j = 0; j < PM_DIM; j++)
+            for (int j = 0; j < pt->n; j++)
                 for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++) {
                     double *v = f.v + PM_DIM * pt->node[j];
                     v[d] -= w_m[j] * dl * nrm[d];
                 }
-            for (int j = 0; j < PM_DIM; j++) {
+            for (int j = 0; j < pt->n; j++) {
                 if (!(w_m[j] > 0))
                     continue;
                 const double *v = f.v + PM_DIM * pt->node[j], vnj = dot(v, nrm);
                 for (int d = 0; d < PM_DIM; d++)
-                    vt[d] += pt->w[j] * (v[d] - vnj * nrm[d]);
+                    vt[d] += pt->w[j] * (sf->motion ? (v[d] - rel[d]) - (vnj - rel_n) * nrm[d] : v[d] - vnj * nrm[d]);
             }
             /* the tangential impulse that stops the slip, returned to the Coulomb bound */
             double lt[PM_DIM];
@@ -179,7 +219,7 @@ static void points_law(pm_contact *ct, pm_contact_field f, double dt)
                 dlt[d] = next - pt->lam_t[d];
                 pt->lam_t[d] = next;
             }
-            for (int j = 0; j < PM_DIM; j++)
+            for (int j = 0; j < pt->n; j++)
                 for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++)
                     f.v[PM_DIM * pt->node[j] + d] -= w_m[j] * dlt[d];
             change = fmax(change, fmax(fabs(dl), norm(dlt)) * denom);
@@ -204,10 +244,8 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         pm_contact_surface *sf = &ct->surface[cn->surface];
         double *v = f.v + PM_DIM * n, before[PM_DIM];
         memcpy(before, v, sizeof before);
-        if (at_points(ct, sf)) { /* after the loop, all points together */
-            memcpy(ct->pt_before + PM_DIM * k, v, sizeof before);
+        if (at_points(ct, sf)) /* after the loop, all points together */
             continue;
-        }
         int acted = 0;
         if (sf->motion) { /* the laws act on the velocity relative to a moving obstacle */
             for (int d = 0; d < PM_DIM; d++)
@@ -239,37 +277,45 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
     if (!ct->pt_cap)
         return;
     points_law(ct, f, dt);
-    /* each entry's share of its own surface's point impulses, so that a node two sets share (a corner)
-     * reports to each set what that set did */
-    memset(ct->pt_impulse, 0, PM_DIM * ct->n_fixed * sizeof *ct->pt_impulse);
+    /* each entry's share of its own surface's point impulses, so that a node two surfaces share (a
+     * corner) reports to each what that surface did */
+    memset(ct->pt_impulse, 0, PM_CONTACT_PT_ROW * ct->n_node * sizeof *ct->pt_impulse);
     for (size_t q = 0; q < ct->n_pt; q++) {
         const pm_contact_point *pt = &ct->pt[q];
-        const double *nrm = ct->surface[pt->surface].normal;
-        for (int j = 0; j < PM_DIM; j++)
-            for (int d = 0; pt->entry[j] >= 0 && d < PM_DIM; d++)
-                ct->pt_impulse[PM_DIM * pt->entry[j] + d] -= pt->w[j] * (pt->lam_n * nrm[d] + pt->lam_t[d]);
+        if (ct->surface[pt->surface].points_lost)
+            continue;
+        const double *nrm = pt->normal;
+        for (int j = 0; j < pt->n; j++) {
+            const int32_t I = pt->node[j];
+            if (pt->entry[j] < 0 || !(f.mass[I] > f.mass_floor))
+                continue;
+            /* the momentum the node took: its velocity change times its own mass */
+            const double w = pt->w[j] * (f.mass[I] / answer_mass(pt, f.mass[I]));
+            double *row = ct->pt_impulse + PM_CONTACT_PT_ROW * pt->entry[j];
+            row[0] += w * pt->lam_n;
+            for (int d = 0; d < PM_DIM; d++) {
+                row[1 + d] -= w * (pt->lam_n * nrm[d] + pt->lam_t[d]);
+                row[1 + PM_DIM + d] -= w * pt->lam_t[d];
+            }
+        }
     }
-    /* node-set entries come first in node[] */
-    for (size_t k = 0; k < ct->n_fixed; k++) {
+    for (size_t k = 0; k < ct->n_node; k++) {
         pm_contact_node *cn = &ct->node[k];
         const int32_t n = cn->node;
         pm_contact_surface *sf = &ct->surface[cn->surface];
         if (!at_points(ct, sf) || !(f.mass[n] > f.mass_floor))
             continue;
-        double *v = f.v + PM_DIM * n, before[PM_DIM], after[PM_DIM];
-        const double *J = ct->pt_impulse + PM_DIM * k;
-        int acted = 0;
-        for (int d = 0; d < PM_DIM; d++) {
-            before[d] = ct->pt_before[PM_DIM * k + d];
-            after[d] = before[d] + J[d] / f.mass[n];
-            acted |= J[d] != 0;
-        }
+        double *v = f.v + PM_DIM * n;
+        const double *row = ct->pt_impulse + PM_CONTACT_PT_ROW * k;
+        int acted = row[0] != 0;
+        for (int d = 0; d < PM_DIM; d++)
+            acted |= row[1 + d] != 0;
         /* held: pushed away from the surface by some point's normal impulse */
-        cn->held = dot(J, cn->normal) < 0;
+        cn->held = row[0] > 0;
         if (cn->held)
-            cn->vn_held = dot(v, cn->normal);
+            cn->vn_held = dot(v, cn->normal) - (sf->motion ? dot(sf->vel, cn->normal) : 0.0);
         if (acted)
-            add_force(sf, cn, f.mass[n], before, after, dt);
+            add_point_force(sf, n, row, dt);
         constrain(&f, n, v);
         for (int d = 0; d < PM_DIM; d++)
             f.acc[PM_DIM * n + d] = (v[d] - f.v0[PM_DIM * n + d]) / dt_acc;

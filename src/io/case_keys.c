@@ -41,7 +41,7 @@ static const char *const sink_outlet[] = {"type", "name", "boundary", NULL},
 static const char *const sink_line[] = {"x", "y", "from", "to", "normal", NULL};
 static const char *const pair_keys[] = {"bodies", "law", "friction", "separation", NULL};
 static const char *const obstacle_keys[] = {"name", "type", "points", "center", "radius", "material_side", "law",
-                                            "friction", "penalty_factor", "velocity", "corners", NULL};
+                                            "friction", "penalty_factor", "velocity", "corners", "acts_at", NULL};
 static const char *const timefn_keys[] = {"value", "ramp_time", "table", NULL};
 static const char *const load_keys[] = {"name", "nearest", "min", "max", "force", "grid_line", "force_per_length", NULL};
 static const char *const load_line[] = {"x", "y", "from", "to", NULL};

@@ -17,6 +17,7 @@ static const char *const obstacle_types[] = {"polyline", "polygon", "circle", NU
 static const char *const laws[] = {"nodal", "penalty", NULL};
 static const char *const sides[] = {"left", "right", NULL};
 static const char *const corners[] = {"round", "sharp", NULL};
+static const char *const acts_at[] = {"nodes", "particles", NULL};
 
 int pm_case_parse_timefn(const char *file, const char *path, json_t *v, pm_timefn *f)
 {
@@ -215,6 +216,13 @@ static int parse_one(pm_case *c, size_t i, json_t *o)
     pm_check(jr_enum(&cx, o, "law", 0, laws, 0, &law));
     ob->law = (pm_obstacle_law)law;
     pm_check(parse_friction(c, path, o, ob));
+    pm_check(jr_enum(&cx, o, "acts_at", 0, acts_at, 0, &ob->at_particles));
+    /* the touching points are the explicit MPM nodal law's, on the one field of a run without body pairs */
+    if (ob->at_particles && (ob->law != PM_OBSTACLE_NODAL || c->method != PM_METHOD_MPM || c->n_contact_pairs))
+        return pm_error_set(PM_EINPUT,
+                            "%s: %s.acts_at: \"particles\" needs law \"nodal\", method \"mpm\" and no contact_pairs; "
+                            "allowed otherwise: \"nodes\"",
+                            c->file, path);
     pm_check(jr_number(&cx, o, "penalty_factor", 0, 1.0, &ob->penalty_factor));
     pm_check(jr_range(&cx, "penalty_factor", ob->penalty_factor, 0, 1, 100, 0));
     pm_check(parse_velocity(c, path, o, ob));

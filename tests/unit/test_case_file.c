@@ -391,6 +391,22 @@ static void obstacles_are_read_and_checked(void **st)
            " \"velocity\": [0, { \"table\": [[0, 0], [2, 1], [1, 3]] }] } ],\n  \"output\": {",
            "obstacles[0].velocity[1].table[2]", "not after");
     EXPECT(at, "  \"obstacles\": [ { \"type\": \"square\" } ],\n  \"output\": {", "obstacles[0].type", "square");
+    /* acting at the particles: the nodal law's; read, and refused with the penalty law */
+    assert_int_equal(load_edit(at,
+                               "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0.1], [1, 0]],"
+                               " \"acts_at\": \"particles\" } ],\n  \"output\": {",
+                               &c),
+                     PM_OK);
+    assert_true(c.obstacles[0].at_particles == 1);
+    pm_case_free(&c);
+    EXPECT(at,
+           "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0], [1, 0]], \"law\": \"penalty\","
+           " \"acts_at\": \"particles\" } ],\n  \"output\": {",
+           "obstacles[0].acts_at", "needs law \"nodal\"");
+    EXPECT(at,
+           "  \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0], [1, 0]], \"acts_at\": \"edges\" } ],\n"
+           "  \"output\": {",
+           "obstacles[0].acts_at", "edges");
     /* loads[]: one set, a force per component */
     EXPECT(at, "  \"loads\": [ { \"nearest\": [0, 0], \"min\": [0, 0], \"max\": [1, 1], \"force\": [0, 1] } ],\n"
            "  \"output\": {", "loads[0]", "either \"nearest\"");

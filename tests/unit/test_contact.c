@@ -566,6 +566,76 @@ static void laws_act_relative_to_a_moving_obstacle(void **st)
     pm_case_free(&c);
 }
 
+/* An obstacle acts at the particles that touch it (acts_at "particles"): a flat polyline on the
+ * body's top (y = 0.25, material below; h = 0.25, 2 x 2 Gauss points per cell, half-size h / 4) over
+ * x = 0..0.3, moving down at 1 m/s, every node at rest with mass 100 (more than a particle's 15.6 kg, so
+ * every node answers with its own). After the law no touching point
+ * approaches it (its stencil's velocity relative to the obstacle along the point's normal at most its
+ * gap / dt; the complementarity holds to the sweeps' tolerance, 1e-9 m/s, so 1e-8), those it pushed
+ * (lam_n > 0) move with it exactly so; the particle a cell off its end (gap 0.094 m) is left alone; the
+ * nodes of no touching particle's stencil (x >= 0.75) keep their velocity; the surface's normal force is
+ * the points' normal impulses over dt and its force the momentum the nodes gained over dt. */
+static void obstacle_points_hold_the_touching_particles(void **st)
+{
+    (void)st;
+    pm_case c;
+    pm_sim *s = small_sim(&c, "mpm", "linear",
+                          "], \"obstacles\": [ { \"type\": \"polyline\", \"points\": [[0, 0.25], [0.3, 0.25]],"
+                          "  \"material_side\": \"right\", \"velocity\": [0, -1], \"acts_at\": \"particles\" }");
+    pm_contact *ct = s->contact;
+    assert_true(ct->surface[0].at_particles && ct->pt_cap > 0);
+    assert_int_equal(s->approx->ops->connect(s->approx, &s->p), PM_OK);
+    pm_contact_detect(ct, &s->grid, 0.0);
+    pm_contact_gaps(ct, s->approx, &s->p);
+    const size_t nn = s->grid.n_nodes;
+    double *mass = calloc(nn, sizeof *mass), *v0 = calloc(PM_DIM * nn, sizeof *v0);
+    double *v = calloc(PM_DIM * nn, sizeof *v), *acc = calloc(PM_DIM * nn, sizeof *acc);
+    double *vfix = calloc(PM_DIM * nn, sizeof *vfix);
+    uint8_t *fixed = calloc(nn, 1);
+    assert_non_null(mass && v0 && v && acc && vfix && fixed);
+    for (size_t n = 0; n < nn; n++)
+        mass[n] = 100.0;
+    const double dt = 1e-3;
+    pm_contact_field f = {mass, v0, v, acc, fixed, vfix, 0.0};
+    pm_contact_apply(ct, f, dt, dt);
+    int pushed = 0, far = 0;
+    double lam = 0.0;
+    for (size_t q = 0; q < ct->n_pt; q++) {
+        const pm_contact_point *pt = &ct->pt[q];
+        double vn = pt->normal[1]; /* the obstacle moves at (0, -1): minus its normal velocity */
+        for (int j = 0; j < pt->n; j++)
+            for (int d = 0; d < PM_DIM; d++)
+                vn += pt->w[j] * v[PM_DIM * pt->node[j] + d] * pt->normal[d];
+        assert_true(vn <= pt->allow / dt + 1e-8);
+        if (pt->lam_n > 0) {
+            pushed++;
+            assert_true(fabs(vn - pt->allow / dt) <= 1e-8);
+        }
+        if (pt->allow > 0.05) {
+            far++;
+            assert_true(pt->lam_n == 0.0);
+        }
+        lam += pt->lam_n;
+    }
+    assert_true(pushed >= 1 && far == 1);
+    double momentum[PM_DIM] = {0};
+    for (size_t n = 0; n < nn; n++) {
+        for (int d = 0; d < PM_DIM; d++)
+            momentum[d] += mass[n] * v[PM_DIM * n + d];
+        if (s->grid.x[PM_DIM * n] >= 0.75 - 1e-12)
+            assert_true(v[PM_DIM * n] == 0.0 && v[PM_DIM * n + 1] == 0.0);
+    }
+    pm_contact_force fr;
+    assert_int_equal(pm_contact_force_of(ct, 0, &fr), PM_OK);
+    NEAR(fr.normal, lam / dt);
+    for (int d = 0; d < PM_DIM; d++)
+        assert_true(fabs(fr.force[d] - momentum[d] / dt) <= 1e-9 * fabs(momentum[1] / dt));
+    assert_true(fr.force[1] < 0);
+    free(mass), free(v0), free(v), free(acc), free(vfix), free(fixed);
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+}
+
 /* Two floor nodes 1 m apart (normal (0, -1)), mass 2 each, one touching point between them at a
  * quarter or three quarters of the way: node 0 lifts off at 1 m/s, node 1 approaches at 1 m/s, both
  * slide at 1 m/s. */
@@ -592,6 +662,8 @@ static void two_nodes_init(two_nodes *o, double s)
     o->ct->n_pt = 1;
     pm_contact_point *pt = &o->ct->pt[0];
     memset(pt, 0, sizeof *pt);
+    pt->n = 2;
+    pt->normal[1] = -1.0;
     pt->node[0] = pt->entry[0] = 0;
     pt->node[1] = pt->entry[1] = 1;
     pt->w[0] = 1.0 - s;
@@ -658,6 +730,9 @@ static void points_at_a_shared_corner(void **st)
     memset(ct->pt, 0, 2 * sizeof *ct->pt);
     for (int q = 0; q < 2; q++) {
         ct->pt[q].surface = q;
+        ct->pt[q].n = 2;
+        for (int d = 0; d < PM_DIM; d++)
+            ct->pt[q].normal[d] = q ? left[d] : down[d];
         ct->pt[q].node[0] = 0;
         ct->pt[q].entry[0] = 2 * q;
         ct->pt[q].w[0] = 1.0;
@@ -699,6 +774,7 @@ int main(void)
         cmocka_unit_test(obstacles_move_and_measure),
         cmocka_unit_test(sharp_and_round_corners),
         cmocka_unit_test(laws_act_relative_to_a_moving_obstacle),
+        cmocka_unit_test(obstacle_points_hold_the_touching_particles),
         cmocka_unit_test(points_law_acts_where_the_material_touches),
         cmocka_unit_test(points_at_a_shared_corner),
     };
