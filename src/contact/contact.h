@@ -73,8 +73,9 @@
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
  * alone, so an explicit checkpoint needs nothing from here beyond the case and t. Implicit runs keep
- * one more thing across steps: the force of every node touching a surface (held), which checkpoints
- * store (pm_contact_implicit_history).
+ * one more thing across steps: the force of every node touching a surface (held; a node held by both
+ * faces of a Gmsh wall's inward corner keeps one per face), which checkpoints store
+ * (pm_contact_implicit_history).
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -187,6 +188,10 @@ typedef struct pm_contact_node {
     int corner;              /**< 1: the node is a Gmsh wall's re-entrant corner (a tool's tip), whose normal
                                   is that of the face the nearest material lies squarely off, chosen by
                                   every pm_contact_gaps() */
+    int32_t own_row;         /**< Gmsh walls (PM_CONTACT_EDGES) only: 0, or for the second face of an inward
+                                  corner 1 + its index among those faces: its implicit force history is then
+                                  a row of its own after the (surface, node) rows, so that the two faces of
+                                  one node keep their forces apart */
 } pm_contact_node;
 
 /** Where the material's surface touches a node-set surface between two of its nodes (explicit steps,
@@ -218,8 +223,9 @@ typedef struct pm_contact {
                                   none of their own (friction conditions): (c / h)^2 */
     int surface_gaps;        /**< 1: every gap from the material's surface, whatever the law (implicit) */
     double *held;            /**< implicit steps: each node's force on the material at the last accepted
-                                  step, PM_DIM per (surface, node) */
+                                  step, PM_DIM per (surface, node), then one row per own_row entry */
     double *held_next;       /**< the same, being written by pm_contact_implicit_accept() */
+    size_t n_own_rows;       /**< entries with an own_row (second faces of Gmsh walls' inward corners) */
     size_t n_pt, pt_cap;     /**< touching points in use and allocated (0: node sets act node by node) */
     pm_contact_point *pt;    /**< explicit steps: where the material touches node-set surfaces */
     int32_t *side_nbr;       /**< per node-set entry: the entries before and after it along its surface
@@ -349,7 +355,8 @@ int pm_contact_implicit_begin(pm_contact *ct, const pm_grid *g, const pm_approx 
 
 /**
  * The nodal force history of implicit steps (pm_contact::held), allocated on the first call: @p rows
- * rows of PM_DIM, one per (surface, node). For checkpoints. @return PM_OK, PM_ENOMEM
+ * rows of PM_DIM, one per (surface, node), then one per second face of an inward corner of a Gmsh wall
+ * (pm_contact_node::own_row). For checkpoints. @return PM_OK, PM_ENOMEM
  */
 int pm_contact_implicit_history(pm_contact *ct, double **held, size_t *rows);
 

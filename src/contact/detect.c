@@ -96,6 +96,7 @@ static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
         cn->gap = sd;
         cn->held = 0;
         cn->corner = 0;
+        cn->own_row = 0;
     }
 }
 

@@ -59,7 +59,9 @@ static int classify(const pm_grid *g, const int32_t *e, int32_t qi, int32_t qo, 
     return NODE_TIP;
 }
 
-static void push(pm_contact *ct, int32_t node, int32_t k, const double n[2], double mu, int corner)
+/* An entry of wall k at node; @p second: the node's second face at an inward corner, which keeps its own
+ * force history in implicit runs. */
+static void push(pm_contact *ct, int32_t node, int32_t k, const double n[2], double mu, int corner, int second)
 {
     pm_contact_node *cn = &ct->node[ct->n_fixed++];
     memset(cn, 0, sizeof *cn);
@@ -68,6 +70,8 @@ static void push(pm_contact *ct, int32_t node, int32_t k, const double n[2], dou
     cn->normal[0] = n[0], cn->normal[1] = n[1];
     cn->mu = mu;
     cn->corner = corner;
+    if (second)
+        cn->own_row = (int32_t)++ct->n_own_rows;
 }
 
 int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set *set, double mu,
@@ -127,10 +131,10 @@ int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set 
         const int c = classify(g, e, in[node], out[node], n1, n2);
         if (c == NODE_NONE)
             continue;
-        push(ct, node, k, n1, mu, c == NODE_TIP);
+        push(ct, node, k, n1, mu, c == NODE_TIP, 0);
         /* both faces of an inward corner hold the node: the entries stay side by side (detect.c) */
         if (c == NODE_TWO)
-            push(ct, node, k, n2, mu, 0);
+            push(ct, node, k, n2, mu, 0, 1);
     }
     ct->n_node = ct->n_fixed;
     free(in), free(out);
