@@ -123,7 +123,8 @@ typedef enum pm_contact_kind {
     /** A rigid disk with the material outside. */
     PM_CONTACT_CIRCLE = 4,
     /** A Gmsh 1-D group on the mesh's boundary (edges.c): a fixed set of nodes as PM_CONTACT_NODE_SET,
-     *  each with the normal of its edges; its geometry is its edges, 2 points each in
+     *  each with the normal of its edges (gmm, rkpm: the nodes near it, found again by every
+     *  pm_contact_detect(), pm_contact_surface::detected); its geometry is its edges, 2 points each in
      *  pm_contact::points, the material on their left. */
     PM_CONTACT_EDGES = 5
 } pm_contact_kind;
@@ -159,6 +160,8 @@ typedef struct pm_contact_surface {
                                   counter-clockwise (the material, outside, is right of every segment) */
     int sharp;               /**< polyline, polygon: a node nearest a corner takes the normal of the face
                                   it lies squarely off instead of the direction to the corner */
+    int detected;            /**< Gmsh wall (PM_CONTACT_EDGES) of a gmm or rkpm run: no entries of its own;
+                                  every detection takes the nodes within reach of its edges */
     const pm_timefn *motion; /**< velocity per component (PM_DIM functions of time; NULL: at rest) */
     double shift[PM_DIM];    /**< displacement of the obstacle at the time of the last detection */
     double box_lo[PM_DIM], box_hi[PM_DIM]; /**< at the last detection: a box holding every point within
@@ -285,6 +288,15 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
  */
 int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set *set, double mu,
                             pm_contact_law law, long bc);
+
+/**
+ * Add the wall of a Gmsh 1-D group @p set of the case's mesh @p frame for a gmm or rkpm run, whose nodes
+ * move: its edges make a fixed rigid wall (the material on each edge's left) whose contact nodes every
+ * pm_contact_detect() finds within pm_contact::reach of it, each with the normal of the face it lies off
+ * (a node nearest a corner: the face it lies squarely off). @return its index, or a negative status
+ */
+int pm_contact_add_edge_wall(pm_contact *ct, const pm_grid *frame, const pm_node_set *set, double mu,
+                             pm_contact_law law, long bc);
 
 /** Add a wall axis = value; detection finds its nodes. @return its index, or a negative status */
 int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double normal[PM_DIM], double mu,

@@ -5,7 +5,8 @@
  * corner and one that follows the material at its re-entrant corner, and its signed distances are the
  * L's; the two coincident nodes of a tool's tip have one face's normal each. A case naming a group the mesh lacks, or a 2-D group, is refused with the names there are.
  * In implicit runs the two faces of an inward corner keep their forces apart (a block at rest in a
- * Gmsh box's corner stays at rest). */
+ * Gmsh box's corner stays at rest). With gmm and rkpm a group is a wall of edges whose nodes detection
+ * finds. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -340,26 +341,86 @@ static void tip_normal_follows_material(void **state)
     tip_normal_from_material(lo2, hi2, right);
 }
 
-/* A case on the incline mesh with a friction condition on @p group. */
-static int incline_case(const char *group, const char *coefficient, pm_case *c, pm_sim **s)
+/* A case on the incline mesh with a friction condition on @p group, with method @p method; @p on_slope: the
+ * block's bottom on the 25 degree slope from 0.1 to 0.3 along it, else a block above the slope. */
+static int incline_case_of(const char *method, int on_slope, const char *group, const char *coefficient, pm_case *c,
+                           pm_sim **s)
 {
-    char path[1024], text[2048];
+    char path[1024], text[2048], shape[512] = "\"type\": \"rectangle\", \"min\": [0.2, 0.33], \"max\": [0.3, 0.4]";
+    if (on_slope) {
+        const double th = 25 * M_PI / 180, e[2] = {cos(th), -sin(th)}, n[2] = {sin(th), cos(th)};
+        double q[4][2];
+        for (int k = 0; k < 4; k++) {
+            const double a = 0.1 + ((k == 1 || k == 2) ? 0.2 : 0.0), b = k >= 2 ? 0.06 : 0.0;
+            q[k][0] = a * e[0] + b * n[0];
+            q[k][1] = 0.4 + a * e[1] + b * n[1];
+        }
+        snprintf(shape, sizeof shape, "\"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]]",
+                 q[0][0], q[0][1], q[1][0], q[1][1], q[2][0], q[2][1], q[3][0], q[3][1]);
+    }
     repo_path("tests/verification/cases/gmsh_incline.json", path, sizeof path);
     snprintf(text, sizeof text,
-             "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01, \"gravity\": [0, -9.81] },"
+             "{ \"dimension\": 2, \"method\": \"%s\","
+             "  \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01, \"gravity\": [0, -9.81] },"
              "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline25.msh\" },"
              "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,"
              "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
-             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"shape\": { \"type\": \"rectangle\","
-             "                \"min\": [0.2, 0.33], \"max\": [0.3, 0.4] } } ],"
+             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"shape\": { %s } } ],"
              "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"%s\", \"coefficient\": %s } ] }",
-             group, coefficient);
+             method, shape, group, coefficient);
     *s = NULL;
     int rc = pm_case_load_buffer(text, strlen(text), path, c);
     if (rc)
         return rc;
     rc = pm_sim_create(c, s, 1);
     return rc;
+}
+
+static int incline_case(const char *group, const char *coefficient, pm_case *c, pm_sim **s)
+{
+    return incline_case_of("mpm", 0, group, coefficient, c, s);
+}
+
+/* GMM and RKPM: the slope is a wall of the mesh's edges whose nodes every detection finds (the cloud's
+ * nodes within reach of it), each with the slope's normal; a 2-D group is no wall. */
+static void incline_meshfree_walls(void **state)
+{
+    (void)state;
+    const char *methods[] = {"gmm", "rkpm"};
+    const double th = 25 * M_PI / 180;
+    for (int m = 0; m < 2; m++) {
+        pm_case c;
+        pm_sim *s;
+        int rc = incline_case_of(methods[m], 1, "slope", "0.3", &c, &s);
+        if (rc)
+            fprintf(stderr, "%s\n", pm_error_message());
+        assert_int_equal(rc, 0);
+        const pm_contact *ct = s->contact;
+        assert_int_equal(ct->n_surfaces, 1);
+        assert_int_equal(ct->surface[0].kind, PM_CONTACT_EDGES);
+        assert_int_equal(ct->surface[0].detected, 1);
+        assert_int_equal(ct->n_fixed, 0);
+        /* the block's bottom lies on the slope: some of its nodes are within reach, and every node
+         * that lies over the slope (not beyond its ends) has the slope's normal */
+        assert_true(ct->n_node > 0);
+        size_t over = 0;
+        for (size_t e = 0; e < ct->n_node; e++) {
+            const double *x = s->grid.x + 2 * ct->node[e].node, *nn = ct->node[e].normal;
+            if (x[0] > 1e-9 && x[0] < 0.5 - 1e-9) {
+                over++;
+                assert_true(hypot(nn[0] + sin(th), nn[1] + cos(th)) < 1e-12);
+            }
+        }
+        printf("%s: %zu contact nodes over the slope\n", methods[m], over);
+        assert_true(over > 0);
+        pm_sim_destroy(s);
+        pm_case_free(&c);
+
+        assert_int_equal(incline_case_of(methods[m], 1, "strip", "0.3", &c, &s), PM_EINPUT);
+        printf("%s\n", pm_error_message());
+        assert_non_null(strstr(pm_error_message(), "boundary_conditions[0].boundary"));
+        pm_case_free(&c);
+    }
 }
 
 static void incline_walls_and_bad_names(void **state)
@@ -512,6 +573,7 @@ int main(void)
         cmocka_unit_test(tool_tip_two_nodes),
         cmocka_unit_test(tip_normal_follows_material),
         cmocka_unit_test(incline_walls_and_bad_names),
+        cmocka_unit_test(incline_meshfree_walls),
         cmocka_unit_test(corner_faces_keep_own_forces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
