@@ -17,7 +17,10 @@
  * the wall's (whose forces pass). The test fails when that velocity comes within 2 %: the check must
  * then be judged.
  *
- * PMECH_VERIFY_SMALL: the same checks at 0.1 s.
+ * PMECH_VERIFY_SMALL: the 10 degree block only, to 0.1 s, judged as the full test does (measured: GMM
+ * travel 1.2e-3 of the frictionless one, forces within 0.4 %). The 25 degree block is left out: both
+ * methods gain speed early (RKPM +2.8 % at 0.1 s, +1.6 % at 0.2 s; GMM +2.7 % and +2.2 %), so 0.1 s is
+ * too short a run to judge its velocity or its forces averaged over the second half.
  */
 #include "verify_util.h"
 
@@ -112,42 +115,55 @@ static int run(int deg, const char *method, double *v_along, double *travel, dou
     return ok;
 }
 
+/* The block sliding on the 25 degree slope to @p t_slide: its velocity and the slope's forces. */
+static int slide(const char *method, const char *name, double t_slide)
+{
+    double v, u, fn[2], secs;
+    char q[160];
+    int ok = 1;
+    t_end = t_slide;
+    const double th = 25 * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * t_slide;
+    ok &= run(25, method, &v, &u, fn, &secs);
+    const double err = (v - ref) / ref;
+    if (strcmp(method, "gmm") == 0) {
+        /* expected to fail (see the top): reported, and an error within the tolerance fails the test,
+         * as this check must then be judged */
+        snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity at %g s (m/s), expected to fail 2 %% "
+                 "(measured +2.2 %%, a GMM polyline obstacle the same)", name, t_slide);
+        vu_report("gmsh_incline_meshfree", q, v, ref, err, -1, secs);
+        if (fabs(err) <= 0.02) {
+            printf("GMM's block now slides within 2 %%: judge this check instead of expecting it to fail\n");
+            ok = 0;
+        }
+    } else {
+        snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity along the slope at %g s (m/s)", name,
+                 t_slide);
+        ok &= vu_report("gmsh_incline_meshfree", q, v, ref, err, 0.02, secs);
+    }
+    snprintf(q, sizeof q, "%s, 25 deg: slope's normal force (N/m), mean over the second half", name);
+    ok &= vu_report("gmsh_incline_meshfree", q, fn[0], W * cos(th), fn[0] / (W * cos(th)) - 1, 0.02, secs);
+    snprintf(q, sizeof q, "%s, 25 deg: slope's friction force (N/m), mean over the second half", name);
+    ok &= vu_report("gmsh_incline_meshfree", q, fn[1], MU * W * cos(th), fn[1] / (MU * W * cos(th)) - 1, 0.02,
+                    secs);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     vu_init(argc, argv);
     if (argc > 1)
         dir = argv[1];
-    const double t_slide = vu_small() ? 0.1 : 0.2, t_stick = t_slide;
+    /* the small variant: the block that sticks, to 0.1 s (see the top) */
+    const int small = vu_small();
+    const double t_slide = 0.2, t_stick = small ? 0.1 : 0.2;
     int ok = 1;
     const char *methods[] = {"gmm", "rkpm"};
     for (size_t m = 0; m < sizeof methods / sizeof methods[0]; m++) {
         const char *name = m ? "RKPM" : "GMM-MLS";
-        const double th = 25 * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * t_slide;
         double v, u, fn[2], secs;
         char q[160];
-        t_end = t_slide;
-        ok &= run(25, methods[m], &v, &u, fn, &secs);
-        const double err = (v - ref) / ref;
-        if (m == 0) {
-            /* expected to fail (see the top): reported, and an error within the tolerance fails the test,
-             * as this check must then be judged */
-            snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity at %g s (m/s), expected to fail 2 %% "
-                     "(measured +2.2 %%, a GMM polyline obstacle the same)", name, t_slide);
-            vu_report("gmsh_incline_meshfree", q, v, ref, err, -1, secs);
-            if (fabs(err) <= 0.02) {
-                printf("GMM's block now slides within 2 %%: judge this check instead of expecting it to fail\n");
-                ok = 0;
-            }
-        } else {
-            snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity along the slope at %g s (m/s)", name,
-                     t_slide);
-            ok &= vu_report("gmsh_incline_meshfree", q, v, ref, err, 0.02, secs);
-        }
-        snprintf(q, sizeof q, "%s, 25 deg: slope's normal force (N/m), mean over the second half", name);
-        ok &= vu_report("gmsh_incline_meshfree", q, fn[0], W * cos(th), fn[0] / (W * cos(th)) - 1, 0.02, secs);
-        snprintf(q, sizeof q, "%s, 25 deg: slope's friction force (N/m), mean over the second half", name);
-        ok &= vu_report("gmsh_incline_meshfree", q, fn[1], MU * W * cos(th), fn[1] / (MU * W * cos(th)) - 1, 0.02,
-                        secs);
+        if (!small)
+            ok &= slide(methods[m], name, t_slide);
         const double ts = 10.0 * M_PI / 180.0, free_dist = 0.5 * G * sin(ts) * t_stick * t_stick;
         t_end = t_stick;
         ok &= run(10, methods[m], &v, &u, fn, &secs);
