@@ -193,9 +193,18 @@ static int wall_surfaces(pm_contact *ct, const pm_case *c, const pm_grid *frame)
             value = hi ? frame->hi[axis] : frame->lo[axis];
             normal[axis] = hi ? 1.0 : -1.0;
         } else {
+            /* a Gmsh group on the mesh's boundary: a wall of its edges */
+            const pm_node_set *set = pm_grid_find_set(frame, bc->boundary);
+            if (set && set->n_edges) {
+                k = pm_contact_add_edge_wall(ct, frame, set, bc->coefficient, PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
+                if (k < 0)
+                    return k;
+                continue;
+            }
             return pm_error_set(PM_EINPUT,
                                 "%s: boundary_conditions[%zu].boundary: with method gmm or rkpm, friction needs a "
-                                "grid side (x_min, x_max, y_min, y_max) or a line, not '%s'",
+                                "grid side (x_min, x_max, y_min, y_max), a line or a 1-D group on the boundary "
+                                "of the Gmsh mesh, not '%s'",
                                 c->file, b, bc->boundary);
         }
         if (normal[axis] == 0)

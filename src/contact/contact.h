@@ -78,8 +78,9 @@
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
  * alone, so an explicit checkpoint needs nothing from here beyond the case and t. Implicit runs keep
- * one more thing across steps: the force of every node touching a surface (held), which checkpoints
- * store (pm_contact_implicit_history).
+ * one more thing across steps: the force of every node touching a surface (held; a node held by both
+ * faces of a Gmsh wall's inward corner keeps one per face), which checkpoints store
+ * (pm_contact_implicit_history).
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -127,7 +128,8 @@ typedef enum pm_contact_kind {
     /** A rigid disk with the material outside. */
     PM_CONTACT_CIRCLE = 4,
     /** A Gmsh 1-D group on the mesh's boundary (edges.c): a fixed set of nodes as PM_CONTACT_NODE_SET,
-     *  each with the normal of its edges; its geometry is its edges, 2 points each in
+     *  each with the normal of its edges (gmm, rkpm: the nodes near it, found again by every
+     *  pm_contact_detect(), pm_contact_surface::detected); its geometry is its edges, 2 points each in
      *  pm_contact::points, the material on their left. */
     PM_CONTACT_EDGES = 5
 } pm_contact_kind;
@@ -163,6 +165,8 @@ typedef struct pm_contact_surface {
                                   counter-clockwise (the material, outside, is right of every segment) */
     int sharp;               /**< polyline, polygon: a node nearest a corner takes the normal of the face
                                   it lies squarely off instead of the direction to the corner */
+    int detected;            /**< Gmsh wall (PM_CONTACT_EDGES) of a gmm or rkpm run: no entries of its own;
+                                  every detection takes the nodes within reach of its edges */
     const pm_timefn *motion; /**< velocity per component (PM_DIM functions of time; NULL: at rest) */
     double shift[PM_DIM];    /**< displacement of the obstacle at the time of the last detection */
     double box_lo[PM_DIM], box_hi[PM_DIM]; /**< at the last detection: a box holding every point within
@@ -196,6 +200,10 @@ typedef struct pm_contact_node {
     int corner;              /**< 1: the node is a Gmsh wall's re-entrant corner (a tool's tip), whose normal
                                   is that of the face the nearest material lies squarely off, chosen by
                                   every pm_contact_gaps() */
+    int32_t own_row;         /**< Gmsh walls (PM_CONTACT_EDGES) only: 0, or for the second face of an inward
+                                  corner 1 + its index among those faces: its implicit force history is then
+                                  a row of its own after the (surface, node) rows, so that the two faces of
+                                  one node keep their forces apart */
 } pm_contact_node;
 
 /** Nodes a touching point acts through at most: a node set's two either side of it; an obstacle's, the
@@ -241,8 +249,9 @@ typedef struct pm_contact {
                                   none of their own (friction conditions): (c / h)^2 */
     int surface_gaps;        /**< 1: every gap from the material's surface, whatever the law (implicit) */
     double *held;            /**< implicit steps: each node's force on the material at the last accepted
-                                  step, PM_DIM per (surface, node) */
+                                  step, PM_DIM per (surface, node), then one row per own_row entry */
     double *held_next;       /**< the same, being written by pm_contact_implicit_accept() */
+    size_t n_own_rows;       /**< entries with an own_row (second faces of Gmsh walls' inward corners) */
     size_t n_pt, pt_cap;     /**< touching points in use and allocated (0: node sets act node by node) */
     pm_contact_point *pt;    /**< explicit steps: where the material touches node-set surfaces */
     int32_t *side_nbr;       /**< per node-set entry: the entries before and after it along its surface
@@ -321,6 +330,15 @@ int pm_contact_add_node_set(pm_contact *ct, size_t n, const int32_t *nodes, cons
 int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set *set, double mu,
                             pm_contact_law law, long bc);
 
+/**
+ * Add the wall of a Gmsh 1-D group @p set of the case's mesh @p frame for a gmm or rkpm run, whose nodes
+ * move: its edges make a fixed rigid wall (the material on each edge's left) whose contact nodes every
+ * pm_contact_detect() finds within pm_contact::reach of it, each with the normal of the face it lies off
+ * (a node nearest a corner: the face it lies squarely off). @return its index, or a negative status
+ */
+int pm_contact_add_edge_wall(pm_contact *ct, const pm_grid *frame, const pm_node_set *set, double mu,
+                             pm_contact_law law, long bc);
+
 /** Add a wall axis = value; detection finds its nodes. @return its index, or a negative status */
 int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double normal[PM_DIM], double mu,
                         pm_contact_law law, long bc, int guard);
@@ -391,7 +409,8 @@ int pm_contact_implicit_begin(pm_contact *ct, const pm_grid *g, const pm_approx 
 
 /**
  * The nodal force history of implicit steps (pm_contact::held), allocated on the first call: @p rows
- * rows of PM_DIM, one per (surface, node). For checkpoints. @return PM_OK, PM_ENOMEM
+ * rows of PM_DIM, one per (surface, node), then one per second face of an inward corner of a Gmsh wall
+ * (pm_contact_node::own_row). For checkpoints. @return PM_OK, PM_ENOMEM
  */
 int pm_contact_implicit_history(pm_contact *ct, double **held, size_t *rows);
 

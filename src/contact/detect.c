@@ -96,6 +96,7 @@ static void near_nodes(pm_contact *ct, int32_t k, const pm_grid *g)
         cn->gap = sd;
         cn->held = 0;
         cn->corner = 0;
+        cn->own_row = 0;
     }
 }
 
@@ -112,7 +113,7 @@ void pm_contact_detect(pm_contact *ct, const pm_grid *g, double t)
         pm_contact_surface *sf = &ct->surface[k];
         place(sf, t);
         place_box(ct, sf, g);
-        if (sf->kind != PM_CONTACT_NODE_SET && sf->kind != PM_CONTACT_EDGES)
+        if (sf->kind != PM_CONTACT_NODE_SET && (sf->kind != PM_CONTACT_EDGES || sf->detected))
             near_nodes(ct, (int32_t)k, g);
     }
 }

@@ -4,6 +4,10 @@
  * touches the wall from t = 0 on, as a node set's do, but with the normal of its own edges, so that a
  * curved or cornered boundary at any orientation acts along its true outward normal; the wall's shape for
  * the gaps from the material (geometry.c) and for the traction profile (profile.c) is its edges.
+ *
+ * GMM and RKPM have no nodes on the mesh's boundary once their node cloud moves with the material: there
+ * the same edges make a fixed rigid wall whose contact nodes every detection finds again (the nodes within
+ * reach of the edges, as for a polyline obstacle), each with the normal of the face it lies off.
  */
 #include "contact/contact.h"
 
@@ -59,7 +63,9 @@ static int classify(const pm_grid *g, const int32_t *e, int32_t qi, int32_t qo, 
     return NODE_TIP;
 }
 
-static void push(pm_contact *ct, int32_t node, int32_t k, const double n[2], double mu, int corner)
+/* An entry of wall k at node; @p second: the node's second face at an inward corner, which keeps its own
+ * force history in implicit runs. */
+static void push(pm_contact *ct, int32_t node, int32_t k, const double n[2], double mu, int corner, int second)
 {
     pm_contact_node *cn = &ct->node[ct->n_fixed++];
     memset(cn, 0, sizeof *cn);
@@ -68,41 +74,25 @@ static void push(pm_contact *ct, int32_t node, int32_t k, const double n[2], dou
     cn->normal[0] = n[0], cn->normal[1] = n[1];
     cn->mu = mu;
     cn->corner = corner;
+    if (second)
+        cn->own_row = (int32_t)++ct->n_own_rows;
 }
 
-int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set *set, double mu,
-                            pm_contact_law law, long bc)
+/* A new wall surface of the edges of @p set (nodes of @p g) with room for @p entries more entries: its
+ * edges, two points each, appended to pm_contact::points. @return its index, or a negative status */
+static int edge_surface(pm_contact *ct, const pm_grid *g, const pm_node_set *set, size_t entries, double mu,
+                        pm_contact_law law, long bc, pm_contact_surface **out)
 {
     const size_t ne = set->n_edges;
     const int32_t *e = set->edges;
-    int32_t *in = malloc((g->n_nodes + 1) * sizeof *in), *out = malloc((g->n_nodes + 1) * sizeof *out);
     double *pts = realloc(ct->points, PM_DIM * (ct->n_points + 2 * ne + 1) * sizeof *pts);
-    if (pts)
-        ct->points = pts;
-    if (!in || !out || !pts) {
-        free(in), free(out);
+    if (!pts)
         return pm_error_set(PM_ENOMEM, "out of memory for the wall '%s'", set->name);
-    }
-    for (size_t n = 0; n < g->n_nodes; n++)
-        in[n] = out[n] = -1;
-    for (size_t q = 0; q < ne; q++) {
-        if (out[e[2 * q]] < 0)
-            out[e[2 * q]] = (int32_t)q;
-        if (in[e[2 * q + 1]] < 0)
-            in[e[2 * q + 1]] = (int32_t)q;
-    }
-    size_t count = 0;
-    double n1[2], n2[2];
-    for (size_t i = 0; i < set->n; i++) {
-        const int c = classify(g, e, in[set->nodes[i]], out[set->nodes[i]], n1, n2);
-        count += c == NODE_TWO ? 2 : c == NODE_NONE ? 0 : 1;
-    }
+    ct->points = pts;
     pm_contact_surface *sf = NULL;
-    const int k = pm_contact_add_surface(ct, count, &sf);
-    if (k < 0) {
-        free(in), free(out);
+    const int k = pm_contact_add_surface(ct, entries, &sf);
+    if (k < 0)
         return k;
-    }
     sf->kind = PM_CONTACT_EDGES;
     sf->law = law;
     sf->mu = mu;
@@ -120,6 +110,50 @@ int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set 
         for (int d = 0; d < PM_DIM; d++)
             ct->points[PM_DIM * (ct->n_points + q) + d] = g->x[PM_DIM * e[q] + d];
     ct->n_points += 2 * ne;
+    *out = sf;
+    return k;
+}
+
+int pm_contact_add_edge_wall(pm_contact *ct, const pm_grid *frame, const pm_node_set *set, double mu,
+                             pm_contact_law law, long bc)
+{
+    pm_contact_surface *sf = NULL;
+    /* room for every node: the list never grows in a step */
+    const int k = edge_surface(ct, frame, set, ct->n_nodes, mu, law, bc, &sf);
+    if (k >= 0)
+        sf->detected = 1;
+    return k;
+}
+
+int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set *set, double mu,
+                            pm_contact_law law, long bc)
+{
+    const int32_t *e = set->edges;
+    int32_t *in = malloc((g->n_nodes + 1) * sizeof *in), *out = malloc((g->n_nodes + 1) * sizeof *out);
+    if (!in || !out) {
+        free(in), free(out);
+        return pm_error_set(PM_ENOMEM, "out of memory for the wall '%s'", set->name);
+    }
+    for (size_t n = 0; n < g->n_nodes; n++)
+        in[n] = out[n] = -1;
+    for (size_t q = 0; q < set->n_edges; q++) {
+        if (out[e[2 * q]] < 0)
+            out[e[2 * q]] = (int32_t)q;
+        if (in[e[2 * q + 1]] < 0)
+            in[e[2 * q + 1]] = (int32_t)q;
+    }
+    size_t count = 0;
+    double n1[2], n2[2];
+    for (size_t i = 0; i < set->n; i++) {
+        const int c = classify(g, e, in[set->nodes[i]], out[set->nodes[i]], n1, n2);
+        count += c == NODE_TWO ? 2 : c == NODE_NONE ? 0 : 1;
+    }
+    pm_contact_surface *sf = NULL;
+    const int k = edge_surface(ct, g, set, count, mu, law, bc, &sf);
+    if (k < 0) {
+        free(in), free(out);
+        return k;
+    }
     sf->first = ct->n_fixed;
     sf->n = count;
     for (size_t i = 0; i < set->n; i++) {
@@ -127,10 +161,10 @@ int pm_contact_add_edge_set(pm_contact *ct, const pm_grid *g, const pm_node_set 
         const int c = classify(g, e, in[node], out[node], n1, n2);
         if (c == NODE_NONE)
             continue;
-        push(ct, node, k, n1, mu, c == NODE_TIP);
+        push(ct, node, k, n1, mu, c == NODE_TIP, 0);
         /* both faces of an inward corner hold the node: the entries stay side by side (detect.c) */
         if (c == NODE_TWO)
-            push(ct, node, k, n2, mu, 0);
+            push(ct, node, k, n2, mu, 0, 1);
     }
     ct->n_node = ct->n_fixed;
     free(in), free(out);

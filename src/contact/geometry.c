@@ -3,6 +3,7 @@
  * a Gmsh wall's edges placed at its position of the last detection, and the unit normal pointing into it (contact.h).
  */
 #include "contact/contact.h"
+#include "contact/segment.h"
 
 #include <math.h>
 
@@ -56,12 +57,9 @@ static double chain(const pm_contact *ct, const pm_contact_surface *sf, const do
         const double *a0 = pts + 2 * (pairs ? 2 * k : k), *b0 = pairs ? a0 + 2 : pts + 2 * ((k + 1) % np);
         const double a[2] = {a0[0] + sf->shift[0], a0[1] + sf->shift[1]};
         const double b[2] = {b0[0] + sf->shift[0], b0[1] + sf->shift[1]};
-        const double e[2] = {b[0] - a[0], b[1] - a[1]}, L2 = dot2(e, e);
-        const double r[2] = {x[0] - a[0], x[1] - a[1]};
-        double s = dot2(r, e) / L2;
-        s = s < 0 ? 0 : s > 1 ? 1 : s;
-        const double q[2] = {a[0] + s * e[0], a[1] + s * e[1]}, w[2] = {x[0] - q[0], x[1] - q[1]};
-        const double dist = sqrt(dot2(w, w)), len = sqrt(L2);
+        double q[2], dist;
+        const double s = pm_segment_nearest(a, b, x, q, &dist);
+        const double e[2] = {b[0] - a[0], b[1] - a[1]}, r[2] = {x[0] - a[0], x[1] - a[1]}, len = sqrt(dot2(e, e));
         const double m[2] = {-sf->side * e[1] / len, sf->side * e[0] / len};
         const double depth = fabs(dot2(r, m));
         /* a shared end point is as near on both segments: the one the point lies squarely off decides */

@@ -28,9 +28,20 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The row of entry cn's force history: its (surface, node) row, or for the second face of a Gmsh wall's
+ * inward corner a row of its own, as the node's two faces push along different normals and each face
+ * must go on from its own force (the first face's row would give the second a tangential force that is
+ * the first's normal one, and leave the first without its normal force). */
+static size_t history_row(const pm_contact *ct, const pm_contact_node *cn)
+{
+    if (ct->surface[cn->surface].kind == PM_CONTACT_EDGES && cn->own_row > 0)
+        return ct->n_surfaces * ct->n_nodes + (size_t)(cn->own_row - 1);
+    return (size_t)cn->surface * ct->n_nodes + (size_t)cn->node;
+}
+
 int pm_contact_implicit_history(pm_contact *ct, double **held, size_t *rows)
 {
-    *rows = ct->n_surfaces * ct->n_nodes;
+    *rows = ct->n_surfaces * ct->n_nodes + ct->n_own_rows;
     if (!ct->held) {
         ct->held = calloc(*rows * PM_DIM + 1, sizeof *ct->held);
         ct->held_next = calloc(*rows * PM_DIM + 1, sizeof *ct->held_next);
@@ -82,7 +93,7 @@ static int entry_law(const pm_contact *ct, const pm_contact_node *cn, double m, 
     const pm_contact_surface *sf = &ct->surface[cn->surface];
     const double *n = cn->normal;
     const double km = m * (sf->stiffness > 0 ? sf->stiffness : ct->penalty);
-    const double *held = ct->held + PM_DIM * ((size_t)cn->surface * ct->n_nodes + (size_t)cn->node);
+    const double *held = ct->held + PM_DIM * history_row(ct, cn);
     double r[PM_DIM];
     for (int d = 0; d < PM_DIM; d++)
         r[d] = du[PM_DIM * (size_t)cn->node + d] - sf->step[d];
@@ -168,7 +179,7 @@ void pm_contact_implicit_accept(pm_contact *ct, const double *mass, double mass_
     for (size_t k = 0; k < ct->n_surfaces; k++)
         memset(&ct->surface[k].f, 0, sizeof ct->surface[k].f);
     /* a node that no longer touches starts from zero force when it touches again */
-    memset(ct->held_next, 0, ct->n_surfaces * ct->n_nodes * PM_DIM * sizeof *ct->held_next);
+    memset(ct->held_next, 0, (ct->n_surfaces * ct->n_nodes + ct->n_own_rows) * PM_DIM * sizeof *ct->held_next);
     for (size_t e = 0; e < ct->n_node; e++) {
         const pm_contact_node *cn = &ct->node[e];
         pm_contact_surface *sf = &ct->surface[cn->surface];
@@ -176,7 +187,7 @@ void pm_contact_implicit_accept(pm_contact *ct, const double *mass, double mass_
         entry_force ef;
         if (sf->guard || !(m > 0) || !isfinite(cn->gap) || !entry_law(ct, cn, m, w->du, &ef))
             continue;
-        double *keep = ct->held_next + PM_DIM * ((size_t)cn->surface * ct->n_nodes + (size_t)cn->node);
+        double *keep = ct->held_next + PM_DIM * history_row(ct, cn);
         for (int d = 0; d < PM_DIM; d++) {
             keep[d] = ef.f[d];
             sf->f.force[d] += ef.f[d];

@@ -10,6 +10,7 @@
  * wall and a slanted one give the same kind of profile.
  */
 #include "contact/contact.h"
+#include "contact/segment.h"
 
 #include "pmech/error.h"
 
@@ -63,14 +64,15 @@ static double chain_position(const pm_contact *ct, const pm_contact_surface *sf,
     double best = INFINITY, at = 0, walked = 0;
     t[0] = 0, t[1] = 1;
     for (size_t k = 0; k < nseg; k++) {
-        const double *a, *b;
-        segment(ct, sf, k, &a, &b);
+        const double *a0, *b0;
+        segment(ct, sf, k, &a0, &b0);
+        const double a[2] = {a0[0] + sf->shift[0], a0[1] + sf->shift[1]};
+        const double b[2] = {b0[0] + sf->shift[0], b0[1] + sf->shift[1]};
         const double e[2] = {b[0] - a[0], b[1] - a[1]}, len = sqrt(dot(e, e));
-        const double r[2] = {x[0] - a[0] - sf->shift[0], x[1] - a[1] - sf->shift[1]};
-        double u = dot(r, e) / (len * len);
-        u = u < 0 ? 0 : u > 1 ? 1 : u;
-        const double w[2] = {r[0] - u * e[0], r[1] - u * e[1]}, dist = sqrt(dot(w, w));
-        if (dist < best) {
+        double q[2], dist;
+        const double u = pm_segment_nearest(a, b, x, q, &dist);
+        /* a node on the end two segments share is as near both by round-off: the first one keeps it */
+        if (dist + 1e-12 * len < best) {
             best = dist;
             at = walked + u * len;
             t[0] = e[0] / len, t[1] = e[1] / len;

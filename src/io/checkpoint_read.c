@@ -271,12 +271,15 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
     if (!rc)
         rc = ck_rows(&ck->f, g, "held", &rows);
     if (!rc && rows > 0) { /* allocated as pm_contact_implicit_begin() would at the first implicit step */
-        const size_t cnt = PM_DIM * n * ct->n_nodes;
+        const size_t cnt = PM_DIM * (n * ct->n_nodes + ct->n_own_rows);
         if (!ct->held)
             ct->held = calloc(cnt, sizeof *ct->held);
         if (!ct->held_next)
             ct->held_next = calloc(cnt, sizeof *ct->held_next);
-        rc = ct->held && ct->held_next ? ck_read(&ck->f, g, "held", CK_DOUBLE, ct->held, n * ct->n_nodes, PM_DIM)
+        /* a checkpoint written before the second faces of Gmsh walls' inward corners had rows of their
+         * own holds the (surface, node) rows only: those faces then start from no force */
+        const size_t want = rows == n * ct->n_nodes ? rows : n * ct->n_nodes + ct->n_own_rows;
+        rc = ct->held && ct->held_next ? ck_read(&ck->f, g, "held", CK_DOUBLE, ct->held, want, PM_DIM)
                                        : pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
     }
     return rc;

@@ -217,7 +217,7 @@ static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
     free(a);
     /* implicit steps build each contact node's force on the one it held at the last step */
     if (!rc)
-        rc = ck_write(f, g, "held", CK_DOUBLE, ct->held, ct->held ? n * ct->n_nodes : 0, PM_DIM);
+        rc = ck_write(f, g, "held", CK_DOUBLE, ct->held, ct->held ? n * ct->n_nodes + ct->n_own_rows : 0, PM_DIM);
     return rc;
 }
 

@@ -3,7 +3,10 @@
  * radial outward normal at every node within 1e-3 on unevenly spaced nodes (the two edges' normals
  * weighted by the inverse of their lengths, which is exact on a circle), an L-shaped outline has two entries at each inward
  * corner and one that follows the material at its re-entrant corner, and its signed distances are the
- * L's; the two coincident nodes of a tool's tip have one face's normal each. A case naming a group the mesh lacks, or a 2-D group, is refused with the names there are. */
+ * L's; the two coincident nodes of a tool's tip have one face's normal each. A case naming a group the mesh lacks, or a 2-D group, is refused with the names there are.
+ * In implicit runs the two faces of an inward corner keep their forces apart (a block at rest in a
+ * Gmsh box's corner stays at rest). With gmm and rkpm a group is a wall of edges whose nodes detection
+ * finds. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -21,6 +24,7 @@
 #include "pmech/error.h"
 #include "pmech/grid.h"
 #include "pmech/sim.h"
+#include "solver/implicit.h"
 #include "solver/sim_internal.h"
 
 static void repo_path(const char *rel, char *out, size_t n)
@@ -337,26 +341,86 @@ static void tip_normal_follows_material(void **state)
     tip_normal_from_material(lo2, hi2, right);
 }
 
-/* A case on the incline mesh with a friction condition on @p group. */
-static int incline_case(const char *group, const char *coefficient, pm_case *c, pm_sim **s)
+/* A case on the incline mesh with a friction condition on @p group, with method @p method; @p on_slope: the
+ * block's bottom on the 25 degree slope from 0.1 to 0.3 along it, else a block above the slope. */
+static int incline_case_of(const char *method, int on_slope, const char *group, const char *coefficient, pm_case *c,
+                           pm_sim **s)
 {
-    char path[1024], text[2048];
+    char path[1024], text[2048], shape[512] = "\"type\": \"rectangle\", \"min\": [0.2, 0.33], \"max\": [0.3, 0.4]";
+    if (on_slope) {
+        const double th = 25 * M_PI / 180, e[2] = {cos(th), -sin(th)}, n[2] = {sin(th), cos(th)};
+        double q[4][2];
+        for (int k = 0; k < 4; k++) {
+            const double a = 0.1 + ((k == 1 || k == 2) ? 0.2 : 0.0), b = k >= 2 ? 0.06 : 0.0;
+            q[k][0] = a * e[0] + b * n[0];
+            q[k][1] = 0.4 + a * e[1] + b * n[1];
+        }
+        snprintf(shape, sizeof shape, "\"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]]",
+                 q[0][0], q[0][1], q[1][0], q[1][1], q[2][0], q[2][1], q[3][0], q[3][1]);
+    }
     repo_path("tests/verification/cases/gmsh_incline.json", path, sizeof path);
     snprintf(text, sizeof text,
-             "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01, \"gravity\": [0, -9.81] },"
+             "{ \"dimension\": 2, \"method\": \"%s\","
+             "  \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01, \"gravity\": [0, -9.81] },"
              "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline25.msh\" },"
              "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,"
              "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
-             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"shape\": { \"type\": \"rectangle\","
-             "                \"min\": [0.2, 0.33], \"max\": [0.3, 0.4] } } ],"
+             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"shape\": { %s } } ],"
              "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"%s\", \"coefficient\": %s } ] }",
-             group, coefficient);
+             method, shape, group, coefficient);
     *s = NULL;
     int rc = pm_case_load_buffer(text, strlen(text), path, c);
     if (rc)
         return rc;
     rc = pm_sim_create(c, s, 1);
     return rc;
+}
+
+static int incline_case(const char *group, const char *coefficient, pm_case *c, pm_sim **s)
+{
+    return incline_case_of("mpm", 0, group, coefficient, c, s);
+}
+
+/* GMM and RKPM: the slope is a wall of the mesh's edges whose nodes every detection finds (the cloud's
+ * nodes within reach of it), each with the slope's normal; a 2-D group is no wall. */
+static void incline_meshfree_walls(void **state)
+{
+    (void)state;
+    const char *methods[] = {"gmm", "rkpm"};
+    const double th = 25 * M_PI / 180;
+    for (int m = 0; m < 2; m++) {
+        pm_case c;
+        pm_sim *s;
+        int rc = incline_case_of(methods[m], 1, "slope", "0.3", &c, &s);
+        if (rc)
+            fprintf(stderr, "%s\n", pm_error_message());
+        assert_int_equal(rc, 0);
+        const pm_contact *ct = s->contact;
+        assert_int_equal(ct->n_surfaces, 1);
+        assert_int_equal(ct->surface[0].kind, PM_CONTACT_EDGES);
+        assert_int_equal(ct->surface[0].detected, 1);
+        assert_int_equal(ct->n_fixed, 0);
+        /* the block's bottom lies on the slope: some of its nodes are within reach, and every node
+         * that lies over the slope (not beyond its ends) has the slope's normal */
+        assert_true(ct->n_node > 0);
+        size_t over = 0;
+        for (size_t e = 0; e < ct->n_node; e++) {
+            const double *x = s->grid.x + 2 * ct->node[e].node, *nn = ct->node[e].normal;
+            if (x[0] > 1e-9 && x[0] < 0.5 - 1e-9) {
+                over++;
+                assert_true(hypot(nn[0] + sin(th), nn[1] + cos(th)) < 1e-12);
+            }
+        }
+        printf("%s: %zu contact nodes over the slope\n", methods[m], over);
+        assert_true(over > 0);
+        pm_sim_destroy(s);
+        pm_case_free(&c);
+
+        assert_int_equal(incline_case_of(methods[m], 1, "strip", "0.3", &c, &s), PM_EINPUT);
+        printf("%s\n", pm_error_message());
+        assert_non_null(strstr(pm_error_message(), "boundary_conditions[0].boundary"));
+        pm_case_free(&c);
+    }
 }
 
 static void incline_walls_and_bad_names(void **state)
@@ -399,6 +463,108 @@ static void incline_walls_and_bad_names(void **state)
     pm_case_free(&c);
 }
 
+enum { BN = 8 }; /* cells of 0.125 along each side of the unit box */
+
+/* An elastic block 0.5 x 0.25 m (rho 1000) in the lower-left inward corner of a Gmsh box whose bottom and
+ * left sides are one frictionless wall, gravity 10 m/s^2 tilted 30 degrees towards the left side, loaded
+ * over 4 quasi-static steps and then held for 4 more. Each face of the corner node (0, 0) must keep its
+ * own force from step to step: with one history for the two, one face read the other's force (normal
+ * to the other: no normal force of its own), started from zero every step, and the corner sank a
+ * penalty increment deeper at every held step. Judged: the first held step re-balances the stress of
+ * the particles that moved in the last loaded step over the reset grid (7e-4 of the largest
+ * displacement, and the next one 1e-6 as the re-balancing dies out); over the 3 held steps after it no
+ * particle may move more than 1e-5 of the largest displacement under the load (at rest a converged
+ * Newton solve changes nothing; the shared history moved the block by 0.23 of it over those steps,
+ * 0.36 over all four); and each face's normal
+ * force summed from the kept forces equals the weight's component across it to 1e-6 (statics of a
+ * frictionless corner, met by any converged solve once each face's force is its own). */
+static void corner_faces_keep_own_forces(void **state)
+{
+    (void)state;
+    int tag[BN + 1][BN + 1], n = 0;
+    static double xy[2 * (BN + 1) * (BN + 1)];
+    static int tris[6 * BN * BN], lines[2 * 2 * BN];
+    for (int j = 0; j <= BN; j++)
+        for (int i = 0; i <= BN; i++) {
+            xy[2 * n] = (double)i / BN, xy[2 * n + 1] = (double)j / BN;
+            tag[i][j] = ++n;
+        }
+    size_t nt = 0;
+    for (int j = 0; j < BN; j++)
+        for (int i = 0; i < BN; i++) {
+            const int t[6] = {tag[i][j], tag[i + 1][j], tag[i + 1][j + 1], tag[i][j], tag[i + 1][j + 1], tag[i][j + 1]};
+            memcpy(tris + 3 * nt, t, sizeof t);
+            nt += 2;
+        }
+    for (int q = 0; q < BN; q++) {
+        lines[4 * q] = tag[q][0], lines[4 * q + 1] = tag[q + 1][0];     /* bottom */
+        lines[4 * q + 2] = tag[0][q + 1], lines[4 * q + 3] = tag[0][q]; /* left */
+    }
+    char path[] = "/tmp/pmech_test_gmsh_walls_XXXXXX";
+    write_mesh(path, "walls", (size_t)n, xy, 2 * BN, lines, nt, tris);
+    const double th = 30 * M_PI / 180, G = 10, rho = 1000, W = rho * 0.5 * 0.25 * G;
+    char text[2048];
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, \"analysis\": { \"type\": \"quasi_static\", \"end_time\": 1, \"load_steps\": 4,"
+             "  \"gravity\": [%.17g, %.17g] },"
+             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"%s\" },"
+             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": %g,"
+             "                   \"youngs_modulus\": 1.0e6, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"particles_per_cell\": 2,"
+             "    \"shape\": { \"type\": \"rectangle\", \"min\": [0, 0], \"max\": [0.5, 0.25] } } ],"
+             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"walls\", \"coefficient\": 0 } ] }",
+             -G * sin(th), -G * cos(th), path, rho);
+    pm_case c;
+    int rc = pm_case_load_buffer(text, strlen(text), "/tmp/corner_case.json", &c);
+    pm_sim *s = NULL;
+    if (!rc)
+        rc = pm_sim_create(&c, &s, 1);
+    if (rc)
+        fprintf(stderr, "%s\n", pm_error_message());
+    assert_int_equal(rc, 0);
+    const pm_contact *ct = s->contact;
+    assert_int_equal(ct->n_own_rows, 1); /* one inward corner */
+    double *x1 = malloc(2 * s->p.n * sizeof *x1);
+    assert_non_null(x1);
+    double loaded = 0, settle = 0, moved = 0;
+    for (int step = 0; step < 8; step++) {
+        assert_int_equal(pm_implicit_step(s, 0.25, NULL, NULL), 0);
+        for (size_t i = 0; i < s->p.n; i++) {
+            const double *x = s->p.x + 2 * i, *x0 = s->p.x0 + 2 * i;
+            if (step == 3)
+                loaded = fmax(loaded, hypot(x[0] - x0[0], x[1] - x0[1]));
+            else if (step == 4)
+                settle = fmax(settle, hypot(x[0] - x1[2 * i], x[1] - x1[2 * i + 1]));
+            else if (step > 4)
+                moved = fmax(moved, hypot(x[0] - x1[2 * i], x[1] - x1[2 * i + 1]));
+            if (step == 3 || step == 4)
+                x1[2 * i] = x[0], x1[2 * i + 1] = x[1];
+        }
+    }
+    /* each face's normal force from the kept forces, by the face's normal */
+    double bottom = 0, left = 0;
+    for (size_t e = 0; e < ct->n_node; e++) {
+        const pm_contact_node *cn = &ct->node[e];
+        const size_t row = cn->own_row > 0 ? ct->n_surfaces * ct->n_nodes + (size_t)(cn->own_row - 1)
+                                           : (size_t)cn->surface * ct->n_nodes + (size_t)cn->node;
+        const double *f = ct->held + 2 * row, N = -(f[0] * cn->normal[0] + f[1] * cn->normal[1]);
+        if (fabs(cn->normal[1] + 1) < 1e-12)
+            bottom += N;
+        else if (fabs(cn->normal[0] + 1) < 1e-12)
+            left += N;
+    }
+    printf("block in a Gmsh corner: largest displacement %.4e m; first held step moved %.2e of it, the next 3 %.2e; "
+           "bottom %.6f (W cos %.6f), left %.6f (W sin %.6f) N/m\n",
+           loaded, settle / loaded, moved / loaded, bottom, W * cos(th), left, W * sin(th));
+    assert_true(loaded > 0 && moved < 1e-5 * loaded);
+    assert_true(fabs(bottom / (W * cos(th)) - 1) < 1e-6);
+    assert_true(fabs(left / (W * sin(th)) - 1) < 1e-6);
+    free(x1);
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -407,6 +573,8 @@ int main(void)
         cmocka_unit_test(tool_tip_two_nodes),
         cmocka_unit_test(tip_normal_follows_material),
         cmocka_unit_test(incline_walls_and_bad_names),
+        cmocka_unit_test(incline_meshfree_walls),
+        cmocka_unit_test(corner_faces_keep_own_forces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

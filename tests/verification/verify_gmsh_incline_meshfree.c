@@ -1,0 +1,179 @@
+/*
+ * The block of verify_gmsh_incline (the slope of cases/gmsh_incline<deg>.msh, the 1-D physical group
+ * "slope", mu = 0.3) with method gmm (MLS) and rkpm: their nodes move with the material, so the group is
+ * a rigid wall of the mesh's edges whose contact nodes every step finds again (src/contact/edges.c), each
+ * with the normal of the edge it lies off. Rigid-body answer while it slides at 25 degrees: the mean
+ * velocity along the slope g (sin(theta) - mu cos(theta)) t at 0.2 s, within 2 % as for the MPM block and
+ * the rigid polyline (a frictionless wall is off by +180 %, a wall holding the block by -100 %). At 10
+ * degrees, below the friction angle (16.7 degrees), it must stay put: its travel along the slope below
+ * 1 % of the frictionless g sin(theta) t^2 / 2. The slope's own force (the laws' impulses averaged over
+ * the second half, as forces.csv writes it) against the statics of the rigid block within 2 %, as for
+ * the MPM block: normal W cos(theta), tangential mu W cos(theta) sliding and W sin(theta) stuck.
+ *
+ * Expected to fail, and marked so instead of being given a tolerance it would pass: GMM's velocity at
+ * 25 degrees, measured +2.2 %. Its block gains speed in two kicks (near 0.075 and 0.135 s); the same
+ * block on an obstacles[] polyline along the same slope of the same mesh is +2.2 % too, and on a quad
+ * grid's side with gravity tilted 25 degrees within 0.3 %, so it is GMM's on this triangle mesh, not
+ * the wall's (whose forces pass). The test fails when that velocity comes within 2 %: the check must
+ * then be judged.
+ *
+ * PMECH_VERIFY_SMALL: the 10 degree block only, to 0.1 s, judged as the full test does (measured: travel
+ * 1.2e-3 (GMM) and 3.4e-3 (RKPM) of the frictionless one, forces within 0.4 % and 0.7 %). The 25 degree block is left out: both
+ * methods gain speed early (RKPM +2.8 % at 0.1 s, +1.6 % at 0.2 s; GMM +2.7 % and +2.2 %), so 0.1 s is
+ * too short a run to judge its velocity or its forces averaged over the second half.
+ */
+#include "verify_util.h"
+
+#include "contact/contact.h"
+#include "pmech/error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double G = 9.81, MU = 0.3;
+/* weight of the 0.2 m x 0.06 m block of density 1000 per unit thickness */
+static const double W = 1000 * 0.2 * 0.06 * 9.81;
+static double t_end; /* of the run being made */
+static const char *dir = ".";
+
+/* The case of verify_gmsh_incline with @p method (and its shape function): the block's bottom on the
+ * slope from s = 0.1 to 0.3 along it. */
+static void make_case(int deg, const char *method, pm_case *c)
+{
+    const double th = deg * M_PI / 180.0, y0 = 0.4, BW = 0.2, H = 0.06, s0 = 0.1;
+    const double e[2] = {cos(th), -sin(th)}, n[2] = {sin(th), cos(th)};
+    const double p0[2] = {s0 * e[0], y0 + s0 * e[1]};
+    double q[4][2];
+    for (int k = 0; k < 4; k++) {
+        const double a = (k == 1 || k == 2) ? BW : 0.0, b = k >= 2 ? H : 0.0;
+        q[k][0] = p0[0] + a * e[0] + b * n[0];
+        q[k][1] = p0[1] + a * e[1] + b * n[1];
+    }
+    char text[4096], path[1024];
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, \"method\": \"%s\", \"shape_function\": \"%s\","
+             "  \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": %g,"
+             "  \"cfl\": 0.3, \"gravity\": [0, %g] },"
+             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline%d.msh\" },"
+             "  \"materials\": [ { \"name\": \"block\", \"model\": \"linear_elastic\", \"density\": 1000,"
+             "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"block\", \"material\": \"block\", \"particles_per_cell\": 2,"
+             "    \"shape\": { \"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]] } } ],"
+             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"slope\", \"coefficient\": %g } ] }",
+             method, strcmp(method, "rkpm") ? "mls" : "rk_cubic", t_end, -G, deg, q[0][0], q[0][1], q[1][0], q[1][1],
+             q[2][0], q[2][1], q[3][0], q[3][1], MU);
+    snprintf(path, sizeof path, "%s/cases/gmsh_incline.json", dir);
+    if (pm_case_load_buffer(text, strlen(text), path, c) != PM_OK) {
+        fprintf(stderr, "%s\n", pm_error_message());
+        exit(2);
+    }
+}
+
+/* Run to t_end: the mean velocity along the slope, the travel of the centre of mass along it, and the
+ * slope's mean normal force on the block over the second half. */
+static int run(int deg, const char *method, double *v_along, double *travel, double force[2], double *secs)
+{
+    pm_case c;
+    make_case(deg, method, &c);
+    const double th = deg * M_PI / 180.0, e[2] = {cos(th), -sin(th)};
+    const double t0 = vu_now();
+    pm_sim *s = vu_sim(&c, 1);
+    if (s->contact->n_surfaces != 1 || s->contact->surface[0].kind != PM_CONTACT_EDGES ||
+        !s->contact->surface[0].detected) {
+        fprintf(stderr, "%s %d deg: the slope is not a wall of mesh edges found by detection\n", method, deg);
+        exit(1);
+    }
+    double v[2], x0[2], x[2];
+    vu_body_mean(s, 0, v, x0);
+    int ok = 1, reset = 0;
+    double t_reset = 0;
+    while (ok && s->t < t_end - 1e-12) {
+        if (!reset && s->t >= 0.5 * t_end) {
+            memset(&s->contact->surface[0].impulse, 0, sizeof s->contact->surface[0].impulse);
+            t_reset = s->t;
+            reset = 1;
+        }
+        double dt = vu_dt(s);
+        if (s->t + dt > t_end)
+            dt = t_end - s->t;
+        if (pm_explicit_step(s, dt) != PM_OK) {
+            fprintf(stderr, "%s %d deg: %s\n", method, deg, pm_error_message());
+            ok = 0;
+        }
+    }
+    vu_body_mean(s, 0, v, x);
+    *v_along = v[0] * e[0] + v[1] * e[1];
+    *travel = (x[0] - x0[0]) * e[0] + (x[1] - x0[1]) * e[1];
+    const pm_contact_force *J = &s->contact->surface[0].impulse;
+    force[0] = J->normal / (s->t - t_reset);
+    force[1] = hypot(J->tangent[0], J->tangent[1]) / (s->t - t_reset);
+    *secs = vu_now() - t0;
+    pm_sim_destroy(s);
+    pm_case_free(&c);
+    return ok;
+}
+
+/* The block sliding on the 25 degree slope to @p t_slide: its velocity and the slope's forces. */
+static int slide(const char *method, const char *name, double t_slide)
+{
+    double v, u, fn[2], secs;
+    char q[160];
+    int ok = 1;
+    t_end = t_slide;
+    const double th = 25 * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * t_slide;
+    ok &= run(25, method, &v, &u, fn, &secs);
+    const double err = (v - ref) / ref;
+    if (strcmp(method, "gmm") == 0) {
+        /* expected to fail (see the top): reported, and an error within the tolerance fails the test,
+         * as this check must then be judged */
+        snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity at %g s (m/s), expected to fail 2 %% "
+                 "(measured +2.2 %%, a GMM polyline obstacle the same)", name, t_slide);
+        vu_report("gmsh_incline_meshfree", q, v, ref, err, -1, secs);
+        if (fabs(err) <= 0.02) {
+            printf("GMM's block now slides within 2 %%: judge this check instead of expecting it to fail\n");
+            ok = 0;
+        }
+    } else {
+        snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity along the slope at %g s (m/s)", name,
+                 t_slide);
+        ok &= vu_report("gmsh_incline_meshfree", q, v, ref, err, 0.02, secs);
+    }
+    snprintf(q, sizeof q, "%s, 25 deg: slope's normal force (N/m), mean over the second half", name);
+    ok &= vu_report("gmsh_incline_meshfree", q, fn[0], W * cos(th), fn[0] / (W * cos(th)) - 1, 0.02, secs);
+    snprintf(q, sizeof q, "%s, 25 deg: slope's friction force (N/m), mean over the second half", name);
+    ok &= vu_report("gmsh_incline_meshfree", q, fn[1], MU * W * cos(th), fn[1] / (MU * W * cos(th)) - 1, 0.02,
+                    secs);
+    return ok;
+}
+
+int main(int argc, char **argv)
+{
+    vu_init(argc, argv);
+    if (argc > 1)
+        dir = argv[1];
+    /* the small variant: the block that sticks, to 0.1 s (see the top) */
+    const int small = vu_small();
+    const double t_slide = 0.2, t_stick = small ? 0.1 : 0.2;
+    int ok = 1;
+    const char *methods[] = {"gmm", "rkpm"};
+    for (size_t m = 0; m < sizeof methods / sizeof methods[0]; m++) {
+        const char *name = m ? "RKPM" : "GMM-MLS";
+        double v, u, fn[2], secs;
+        char q[160];
+        if (!small)
+            ok &= slide(methods[m], name, t_slide);
+        const double ts = 10.0 * M_PI / 180.0, free_dist = 0.5 * G * sin(ts) * t_stick * t_stick;
+        t_end = t_stick;
+        ok &= run(10, methods[m], &v, &u, fn, &secs);
+        snprintf(q, sizeof q, "%s, 10 deg Gmsh slope, mu 0.3 (sticks): travel / frictionless travel at %g s", name,
+                 t_stick);
+        ok &= vu_report("gmsh_incline_meshfree", q, u / free_dist, 0.0, u / free_dist, 0.01, secs);
+        snprintf(q, sizeof q, "%s, 10 deg: slope's normal force (N/m), mean over the second half", name);
+        ok &= vu_report("gmsh_incline_meshfree", q, fn[0], W * cos(ts), fn[0] / (W * cos(ts)) - 1, 0.02, secs);
+        snprintf(q, sizeof q, "%s, 10 deg: slope's friction force (N/m), mean over the second half", name);
+        ok &= vu_report("gmsh_incline_meshfree", q, fn[1], W * sin(ts), fn[1] / (W * sin(ts)) - 1, 0.02, secs);
+    }
+    return ok ? 0 : 1;
+}
