@@ -72,9 +72,9 @@
  * common normal of their mass gradients).
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
- * alone, so an explicit checkpoint needs nothing from here beyond the case and t. Implicit runs keep
- * one more thing across steps: the force of every node touching a surface (held), which checkpoints
- * store (pm_contact_implicit_history).
+ * alone. Across steps, explicit runs keep the touching points' impulses (the next step's sweeps start
+ * from them, friction.c) and implicit runs the force of every node touching a surface (held,
+ * pm_contact_implicit_history); checkpoints store both.
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -199,6 +199,7 @@ typedef struct pm_contact_point {
     double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
+    size_t particle;         /**< the particle whose foot it is */
 } pm_contact_point;
 
 /** The surfaces of a simulation and the nodes touching them. */
@@ -228,6 +229,12 @@ typedef struct pm_contact {
     double *pt_impulse;      /**< per node-set entry: the impulse its surface's points gave its node, PM_DIM
                                   each (a node two sets share gets each set's own) */
     const double *node_x;    /**< the node positions the points are placed between (the grid's) */
+    size_t pt_old, n_pt_old; /**< while the points are found: where the last step's points were moved
+                                  (the end of pt[]) and how many, their impulses to start the sweeps from */
+    size_t pt_cursor;        /**< the next of them to match (pm_contact_gaps) */
+    double pt_dt;            /**< the step the points' impulses were found for (0: none yet) */
+    size_t pt_solves;        /**< explicit applications that had touching points, since creation */
+    size_t pt_sweeps;        /**< the Gauss-Seidel sweeps those took, summed */
 } pm_contact;
 
 /** The nodal arrays one application works on (one body's field). */

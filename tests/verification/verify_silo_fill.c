@@ -205,6 +205,10 @@ int main(int argc, char **argv)
               fn_wall / fw / K_J - 1, -1, secs);
     vu_report(BENCH, "wall's tangential / normal force, against mu_w", fabs(ft_wall) / fn_wall, MU_W,
               fabs(ft_wall) / fn_wall / MU_W - 1, -1, secs);
+    /* the cost of the friction sides' law, for docs/performance.md (reported) */
+    printf("  touching-point sweeps per step %.1f over %zu steps\n",
+           s->contact->pt_solves ? (double)s->contact->pt_sweeps / (double)s->contact->pt_solves : 0.0,
+           s->contact->pt_solves);
     pm_sim_destroy(s);
     pm_case_free(&c);
     return ok ? 0 : 1;
