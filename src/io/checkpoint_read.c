@@ -252,6 +252,38 @@ static int read_flow(pm_checkpoint *ck, hid_t g, void *arg)
 
 #define FORCE_COLS (sizeof(pm_contact_force) / sizeof(double))
 
+/* The last step's touching points, whose impulses the next step's sweeps start from (checkpoint_write.c);
+ * a checkpoint without them (written before they were kept) starts those sweeps from zero. */
+enum { POINT_COLS = 3 + PM_DIM };
+
+static int read_points(pm_checkpoint *ck, hid_t g, pm_contact *ct)
+{
+    size_t rows = 0;
+    if (H5Lexists(g, "points", H5P_DEFAULT) <= 0 || ck_rows(&ck->f, g, "points", &rows) || rows == 0)
+        return PM_OK;
+    if (rows > ct->pt_cap)
+        return pm_error_set(PM_EINPUT, "%s: %zu contact points where this case holds %zu", ck->path, rows, ct->pt_cap);
+    double *a = malloc(rows * POINT_COLS * sizeof *a);
+    if (!a)
+        return pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
+    int rc = ck_read(&ck->f, g, "points", CK_DOUBLE, a, rows, POINT_COLS);
+    if (!rc)
+        rc = get_double(&ck->f, g, "points_dt", &ct->pt_dt);
+    for (size_t q = 0; !rc && q < rows; q++) {
+        pm_contact_point *pt = &ct->pt[q];
+        const double *row = a + q * POINT_COLS;
+        pt->surface = (int32_t)row[0];
+        pt->particle = (size_t)row[1];
+        pt->lam_n = row[2];
+        for (int d = 0; d < PM_DIM; d++)
+            pt->lam_t[d] = row[3 + d];
+    }
+    free(a);
+    if (!rc)
+        ct->n_pt = rows;
+    return rc;
+}
+
 static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
 {
     pm_contact *ct = ((pm_sim *)arg)->contact;
@@ -279,7 +311,7 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
         rc = ct->held && ct->held_next ? ck_read(&ck->f, g, "held", CK_DOUBLE, ct->held, n * ct->n_nodes, PM_DIM)
                                        : pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
     }
-    return rc;
+    return rc ? rc : read_points(ck, g, ct);
 }
 
 static int read_meshfree(pm_checkpoint *ck, hid_t g, void *arg)

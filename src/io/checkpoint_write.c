@@ -200,6 +200,29 @@ static int write_flow(const ck_file *f, hid_t g, const pm_ck_run *r)
 /* pm_contact_force is PM_DIM + 1 + PM_DIM doubles: one row per surface. */
 #define FORCE_COLS (sizeof(pm_contact_force) / sizeof(double))
 
+/* Explicit friction sides start each step's sweeps from the impulses of the last step's touching points
+ * (src/contact/friction.c): each point's surface, particle and impulses, and the step they were found for. */
+enum { POINT_COLS = 3 + PM_DIM };
+
+static int write_points(const ck_file *f, hid_t g, const pm_contact *ct)
+{
+    double *a = malloc((ct->n_pt ? ct->n_pt : 1) * POINT_COLS * sizeof *a);
+    if (!a)
+        return pm_error_set(PM_ENOMEM, "out of memory writing a checkpoint");
+    for (size_t q = 0; q < ct->n_pt; q++) {
+        const pm_contact_point *pt = &ct->pt[q];
+        double *row = a + q * POINT_COLS;
+        row[0] = pt->surface;
+        row[1] = (double)pt->particle;
+        row[2] = pt->lam_n;
+        for (int d = 0; d < PM_DIM; d++)
+            row[3 + d] = pt->lam_t[d];
+    }
+    int rc = ck_write(f, g, "points", CK_DOUBLE, a, ct->n_pt, POINT_COLS);
+    free(a);
+    return rc ? rc : put_double(f, g, "points_dt", ct->pt_dt);
+}
+
 static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
 {
     const pm_contact *ct = r->s->contact;
@@ -218,6 +241,8 @@ static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
     /* implicit steps build each contact node's force on the one it held at the last step */
     if (!rc)
         rc = ck_write(f, g, "held", CK_DOUBLE, ct->held, ct->held ? n * ct->n_nodes : 0, PM_DIM);
+    if (!rc)
+        rc = write_points(f, g, ct);
     return rc;
 }
 
