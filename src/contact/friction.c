@@ -218,10 +218,11 @@ static void points_law(pm_contact *ct, pm_contact_field f, double dt)
                 pt->lam_t[d] = next;
             }
             give(pt, f.v, w_m, nrm, 0.0, dlt);
-            change = fmax(change, fmax(fabs(dl), norm(dlt)));
-            largest = fmax(largest, fmax(pt->lam_n, norm(pt->lam_t)));
+            /* squared, so that the measure costs no square roots */
+            change = fmax(change, fmax(dl * dl, dot(dlt, dlt)));
+            largest = fmax(largest, fmax(pt->lam_n * pt->lam_n, dot(pt->lam_t, pt->lam_t)));
         }
-        if (change <= POINT_RTOL * largest)
+        if (change <= POINT_RTOL * POINT_RTOL * largest)
             break;
     }
     ct->pt_solves += ct->n_pt > 0;
