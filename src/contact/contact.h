@@ -77,10 +77,10 @@
  * common normal of their mass gradients).
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
- * alone, so an explicit checkpoint needs nothing from here beyond the case and t. Implicit runs keep
- * one more thing across steps: the force of every node touching a surface (held; a node held by both
- * faces of a Gmsh wall's inward corner keeps one per face), which checkpoints store
- * (pm_contact_implicit_history).
+ * alone. Across steps, explicit runs keep the touching points' impulses (the next step's sweeps start
+ * from them, friction.c) and implicit runs the force of every node touching a surface (held; a node held
+ * by both faces of a Gmsh wall's inward corner keeps one per face, pm_contact_implicit_history);
+ * checkpoints store both.
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -227,6 +227,7 @@ typedef struct pm_contact_point {
                                   impulse with (node set: 0, every node with its own) */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
+    size_t particle;         /**< the particle whose foot it is */
 } pm_contact_point;
 
 /** Values per entry in pm_contact::pt_impulse. */
@@ -260,6 +261,12 @@ typedef struct pm_contact {
                                   impulse and its tangential part (PM_DIM each) its surface's points gave
                                   its node (a node two surfaces share gets each surface's own) */
     const double *node_x;    /**< the node positions the points are placed between (the grid's) */
+    size_t pt_old, n_pt_old; /**< while the points are found: where the last step's points were moved
+                                  (the end of pt[]) and how many, their impulses to start the sweeps from */
+    size_t pt_cursor;        /**< the next of them to match (pm_contact_gaps) */
+    double pt_dt;            /**< the step the points' impulses were found for (0: none yet) */
+    size_t pt_solves;        /**< explicit applications that had touching points, since creation */
+    size_t pt_sweeps;        /**< the Gauss-Seidel sweeps those took, summed */
 } pm_contact;
 
 /** Whether surface @p sf can act at touching points (pm_contact_points_reserve): the nodal law of a node

@@ -7,6 +7,7 @@
 #include "contact/contact.h"
 
 #include <math.h>
+#include <string.h>
 
 /* Place a moving obstacle at time t: its displacement is the integral of its velocity. */
 static void place(pm_contact_surface *sf, double t)
@@ -137,10 +138,33 @@ static inline double half_size(const pm_particles *p, size_t i)
  * the largest one (a particle midway between two nodes sets both). */
 static const double VOTE = 0.5;
 
+/* The impulses particle i's point on surface k had in the last step, if it had one (else zero). Both
+ * lists are in the same order, surface by surface and particle by particle, so one cursor runs through
+ * the last one. A particle renumbered since (sinks, sources) may take another's impulses: they only
+ * start the sweeps, which converge from any start. */
+static void last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *q)
+{
+    q->lam_n = 0.0;
+    for (int d = 0; d < PM_DIM; d++)
+        q->lam_t[d] = 0.0;
+    if (ct->n_pt >= ct->pt_old) /* the new list reaches the old one: writing on would overwrite it */
+        ct->n_pt_old = 0;
+    const size_t end = ct->pt_old + ct->n_pt_old;
+    size_t c = ct->pt_cursor;
+    while (c < end && ct->pt[c].surface == (int32_t)k && ct->pt[c].particle < i)
+        c++;
+    ct->pt_cursor = c;
+    if (c < end && ct->pt[c].surface == (int32_t)k && ct->pt[c].particle == i) {
+        q->lam_n = ct->pt[c].lam_n;
+        for (int d = 0; d < PM_DIM; d++)
+            q->lam_t[d] = ct->pt[c].lam_t[d];
+    }
+}
+
 /* A point where particle i's surface (its foot on the plane, gap above it) may touch node-set surface k:
  * between the entry e whose node moves the particle most and the neighbour of e on the foot's side. */
-static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, double sd, const double n[PM_DIM],
-                      double gap)
+static void add_point(pm_contact *ct, size_t k, int32_t e, size_t i, double sd, const double n[PM_DIM],
+                      double gap, const double *xp)
 {
 #if PM_DIM != 2
 #error "a point lies between two nodes of a line"
@@ -165,7 +189,10 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, dou
             s = fmin(along / span, 1.0);
         }
     }
-    pm_contact_point *q = &ct->pt[ct->n_pt++];
+    pm_contact_point *q = &ct->pt[ct->n_pt];
+    last_impulses(ct, k, i, q);
+    ct->n_pt++;
+    q->particle = i;
     q->surface = (int32_t)k;
     q->n = 2;
     for (int d = 0; d < PM_DIM; d++)
@@ -180,17 +207,19 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, const double *xp, dou
     q->mass = 0.0;
 }
 
-/* A point where a particle (stencil st, normal n into obstacle k, gap, mass mp) may touch an obstacle:
+/* A point where particle ip (stencil st, normal n into obstacle k, gap, mass mp) may touch an obstacle:
  * the particle itself, through those of its stencil's nodes that are the obstacle's candidates (slot),
  * so that the law holds the velocity that carries it and no node further than that velocity needs. */
-static void add_touch(pm_contact *ct, size_t k, const pm_stencil *st, const double n[PM_DIM], double gap,
-                      double mp)
+static void add_touch(pm_contact *ct, size_t k, size_t ip, const pm_stencil *st, const double n[PM_DIM],
+                      double gap, double mp)
 {
     if (ct->n_pt >= ct->pt_cap) {
         ct->surface[k].points_lost = 1;
         return;
     }
     pm_contact_point *q = &ct->pt[ct->n_pt];
+    last_impulses(ct, k, ip, q);
+    q->particle = ip;
     int m = 0;
     for (int j = 0; j < st->n; j++) {
         const int32_t e = ct->slot[st->node[j]];
@@ -199,9 +228,9 @@ static void add_touch(pm_contact *ct, size_t k, const pm_stencil *st, const doub
         int at = m;
         if (m == PM_CONTACT_POINT_NODES) { /* a wide stencil: its largest shape functions */
             at = 0;
-            for (int i = 1; i < m; i++)
-                if (q->w[i] < q->w[at])
-                    at = i;
+            for (int r = 1; r < m; r++)
+                if (q->w[r] < q->w[at])
+                    at = r;
             if (!(st->N[j] > q->w[at]))
                 continue;
         } else {
@@ -240,6 +269,14 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
     for (size_t e = first; e < last; e++) {
         ct->slot[ct->node[e].node] = (int32_t)e;
         ct->node[e].gap = INFINITY; /* no particle in the node's support: nothing to touch */
+    }
+    if (points) { /* this surface's points of the last step, if it had any, start at the first of them */
+        size_t c = ct->pt_cursor;
+        const size_t end = ct->pt_old + ct->n_pt_old;
+        while (c < end && ct->pt[c].surface != (int32_t)k)
+            c++;
+        if (c < end)
+            ct->pt_cursor = c;
     }
     pm_stencil st;
     for (size_t i = 0; i < p->n; i++) {
@@ -289,9 +326,9 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
         }
         if (points && gap <= 0.25 * ct->reach) {
             if (sf->kind != PM_CONTACT_NODE_SET)
-                add_touch(ct, k, &st, n, gap, p->mass[i]);
+                add_touch(ct, k, i, &st, n, gap, p->mass[i]);
             else if (e_max >= 0)
-                add_point(ct, k, e_max, p->x + PM_DIM * i, sd, n, gap);
+                add_point(ct, k, e_max, i, sd, n, gap, p->x + PM_DIM * i);
         }
     }
     /* a node held by both faces of a corner has two entries side by side, and the slot named the last */
@@ -308,6 +345,17 @@ void pm_contact_gaps(pm_contact *ct, const pm_approx *a, const pm_particles *p)
         return;
     /* node sets hold their entries in creation order, the others in detection order: both by surface */
     size_t e = 0;
+    /* the last step's points go to the end of the list, where the new ones find the impulses they start
+     * from (friction.c); when the two lists might not fit side by side, every point starts from zero */
+    const size_t old = ct->n_pt;
+    ct->n_pt_old = 0;
+    ct->pt_old = ct->pt_cap;
+    if (old > 0 && 2 * old <= ct->pt_cap) {
+        ct->pt_old = ct->pt_cap - old;
+        memmove(ct->pt + ct->pt_old, ct->pt, old * sizeof *ct->pt);
+        ct->n_pt_old = old;
+    }
+    ct->pt_cursor = ct->pt_old;
     ct->n_pt = 0;
     while (e < ct->n_node) {
         const int32_t k = ct->node[e].surface;

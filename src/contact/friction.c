@@ -143,9 +143,38 @@ static inline double answer_mass(const pm_contact_point *pt, double m)
     return pt->mass > m ? pt->mass : m;
 }
 
-/* Sweeps of the point law at most, and the velocity change at every point below which they stop. */
+/* Sweeps of the point law at most, and when they stop: once no point's impulse changed in a sweep by
+ * more than POINT_RTOL times the largest impulse of all points (see points_law). */
 enum { POINT_SWEEPS = 200 };
-static const double POINT_TOL = 1e-9;
+static const double POINT_RTOL = 1e-4;
+
+/* The velocity change per unit impulse at each of the point's nodes (w / m, m the mass the node answers
+ * with; 0 where a node carries no material), and the point's own, sum w^2 / m (0: the point touches no
+ * material). */
+static inline double point_weights(const pm_contact_point *pt, pm_contact_field f,
+                                   double w_m[PM_CONTACT_POINT_NODES])
+{
+    double denom = 0.0;
+    for (int j = 0; j < pt->n; j++) {
+        w_m[j] = 0.0;
+        const int32_t I = pt->node[j];
+        if (I < 0 || !(f.mass[I] > f.mass_floor) || pt->w[j] == 0)
+            continue;
+        w_m[j] = pt->w[j] / answer_mass(pt, f.mass[I]);
+        denom += pt->w[j] * w_m[j];
+    }
+    return denom;
+}
+
+/* The impulse dn along the normal nrm plus dtan tangential, given at the point: each node's velocity
+ * changes by -w / m times it. */
+static inline void give(const pm_contact_point *pt, double *v, const double w_m[PM_CONTACT_POINT_NODES],
+                        const double *nrm, double dn, const double dtan[PM_DIM])
+{
+    for (int j = 0; j < pt->n; j++)
+        for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++)
+            v[PM_DIM * pt->node[j] + d] -= w_m[j] * (dn * nrm[d] + dtan[d]);
+}
 
 /*
  * The nodal law at the touching points: the velocity interpolated at each point (its two nodes, by
@@ -156,16 +185,36 @@ static const double POINT_TOL = 1e-9;
  * stopped while the material over it was still descending (it pivoted the disk over that node, which
  * then climbed). Points share nodes, so the impulses are found by projected Gauss-Seidel sweeps (each
  * point's normal impulse kept >= 0, its tangential one in the Coulomb disk) until they settle.
+ *
+ * Each point starts from the impulses it had in the last step (pm_contact_gaps carries them over),
+ * scaled to this step's length: a deposit at rest needs nearly the same impulse, m g dt at every node
+ * of a floor, step after step, and from zero the sweeps spread it along the surface one pair of nodes
+ * per sweep. The sweeps stop when no impulse changed in a sweep by more than POINT_RTOL of the largest
+ * one. The surfaces' forces are judged to the percent (Janssen's bin, the silo's floor): with 1e-3,
+ * 1e-4 and 1e-6 Janssen's figures differ by under 0.5 % of the reference from each other and from the
+ * old stop (a velocity change below 1e-9 m/s, 57 sweeps per step), as much as runs started from zero
+ * differ; 1e-4 keeps a margin of ten below the loosest tried and takes 12 sweeps there.
  */
 static void points_law(pm_contact *ct, pm_contact_field f, double dt)
 {
+    const double scale = ct->pt_dt > 0 ? dt / ct->pt_dt : 0.0;
     for (size_t q = 0; q < ct->n_pt; q++) {
-        ct->pt[q].lam_n = 0.0;
+        pm_contact_point *pt = &ct->pt[q];
+        if (ct->surface[pt->surface].points_lost)
+            continue;
+        double w_m[PM_CONTACT_POINT_NODES];
+        const int touches = point_weights(pt, f, w_m) > 0;
+        pt->lam_n *= touches ? scale : 0.0;
         for (int d = 0; d < PM_DIM; d++)
-            ct->pt[q].lam_t[d] = 0.0;
+            pt->lam_t[d] *= touches ? scale : 0.0;
+        if (pt->lam_n > 0)
+            give(pt, f.v, w_m, pt->normal, pt->lam_n, pt->lam_t);
     }
-    for (int sweep = 0; sweep < POINT_SWEEPS; sweep++) {
-        double change = 0.0;
+    ct->pt_dt = dt;
+    int sweeps = 0;
+    while (ct->n_pt > 0 && sweeps < POINT_SWEEPS) {
+        sweeps++;
+        double change = 0.0, largest = 0.0;
         for (size_t q = 0; q < ct->n_pt; q++) {
             pm_contact_point *pt = &ct->pt[q];
             const pm_contact_surface *sf = &ct->surface[pt->surface];
@@ -179,54 +228,49 @@ static void points_law(pm_contact *ct, pm_contact_field f, double dt)
                     rel[d] = sf->vel[d];
                 rel_n = dot(rel, nrm);
             }
-            double denom = 0.0, vn = 0.0, vt[PM_DIM] = {0};
-            double w_m[PM_CONTACT_POINT_NODES] = {0}; /* w / m of each node, 0 where it carries no material */
-            for (int j = 0; j < pt->n; j++) {
-                const int32_t I = pt->node[j];
-                if (I < 0 || !(f.mass[I] > f.mass_floor) || pt->w[j] == 0)
-                    continue;
-                w_m[j] = pt->w[j] / answer_mass(pt, f.mass[I]);
-                denom += pt->w[j] * w_m[j];
-                vn += pt->w[j] * (sf->motion ? dot(f.v + PM_DIM * I, nrm) - rel_n : dot(f.v + PM_DIM * I, nrm));
-            }
+            double w_m[PM_CONTACT_POINT_NODES];
+            const double denom = point_weights(pt, f, w_m);
             if (!(denom > 0))
                 continue;
+            double vn = 0.0, vt[PM_DIM] = {0};
+            for (int j = 0; j < pt->n; j++)
+                if (w_m[j] > 0)
+                    vn += pt->w[j] * (dot(f.v + PM_DIM * pt->node[j], nrm) - rel_n);
             double dl = (vn - pt->allow / dt) / denom;
             if (pt->lam_n + dl < 0)
                 dl = -pt->lam_n;
             pt->lam_n += dl;
-            for (int j = 0; j < pt->n; j++)
-                for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++) {
-                    double *v = f.v + PM_DIM * pt->node[j];
-                    v[d] -= w_m[j] * dl * nrm[d];
-                }
+            const double none[PM_DIM] = {0};
+            give(pt, f.v, w_m, nrm, dl, none);
             for (int j = 0; j < pt->n; j++) {
                 if (!(w_m[j] > 0))
                     continue;
                 const double *v = f.v + PM_DIM * pt->node[j], vnj = dot(v, nrm);
                 for (int d = 0; d < PM_DIM; d++)
-                    vt[d] += pt->w[j] * (sf->motion ? (v[d] - rel[d]) - (vnj - rel_n) * nrm[d] : v[d] - vnj * nrm[d]);
+                    vt[d] += pt->w[j] * ((v[d] - rel[d]) - (vnj - rel_n) * nrm[d]);
             }
             /* the tangential impulse that stops the slip, returned to the Coulomb bound */
             double lt[PM_DIM];
             for (int d = 0; d < PM_DIM; d++)
                 lt[d] = pt->lam_t[d] + vt[d] / denom;
             const double bound = pt->lam_n > 0 ? sf->mu * pt->lam_n : 0.0, size = norm(lt);
-            const double scale = size > bound ? bound / size : 1.0;
+            const double keep = size > bound ? bound / size : 1.0;
             double dlt[PM_DIM];
             for (int d = 0; d < PM_DIM; d++) {
-                const double next = scale * lt[d];
+                const double next = keep * lt[d];
                 dlt[d] = next - pt->lam_t[d];
                 pt->lam_t[d] = next;
             }
-            for (int j = 0; j < pt->n; j++)
-                for (int d = 0; w_m[j] > 0 && d < PM_DIM; d++)
-                    f.v[PM_DIM * pt->node[j] + d] -= w_m[j] * dlt[d];
-            change = fmax(change, fmax(fabs(dl), norm(dlt)) * denom);
+            give(pt, f.v, w_m, nrm, 0.0, dlt);
+            /* squared, so that the measure costs no square roots */
+            change = fmax(change, fmax(dl * dl, dot(dlt, dlt)));
+            largest = fmax(largest, fmax(pt->lam_n * pt->lam_n, dot(pt->lam_t, pt->lam_t)));
         }
-        if (change <= POINT_TOL)
+        if (change <= POINT_RTOL * POINT_RTOL * largest)
             break;
     }
+    ct->pt_solves += ct->n_pt > 0;
+    ct->pt_sweeps += (size_t)sweeps;
 }
 
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc)

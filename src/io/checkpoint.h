@@ -66,6 +66,7 @@ typedef struct pm_ck_run {
     const pm_sim *s;
     pm_output *out;                 /**< NULL: the run writes no files (no checkpoint either) */
     const pm_forces_log *forces;
+    const double *walls_t_last;     /**< the wall profiles' last frame time (NULL: no wall profiles) */
     const pm_ck_logs *logs;
     const pm_run_loop *loop;
     int threads;                    /**< threads of the run (a restart with others is not bitwise) */
@@ -120,12 +121,13 @@ int pm_checkpoint_logs_aside(pm_checkpoint *ck);
 
 /**
  * @brief After the outputs were opened (pm_output_open_resume and the logs' own opens): the frame
- *        list, the probes, the picture ranges, forces.csv's schedule and the body fields' impulses
- *        (contact_forces.csv) as stored; every log back in place, cut to its stored length, and its
- *        stream appending to it.
+ *        list, the probes, the picture ranges, forces.csv's schedule, the surfaces' impulses since the
+ *        last forces.csv row and the last wall profile (into @p walls_t_last, its time, when not NULL),
+ *        and the body fields' impulses (contact_forces.csv) as stored; every log back in place, cut to
+ *        its stored length, and its stream appending to it.
  */
 int pm_checkpoint_restore_outputs(pm_checkpoint *ck, pm_sim *s, pm_output *out, pm_forces_log *forces,
-                                  pm_ck_logs *logs);
+                                  double *walls_t_last, pm_ck_logs *logs);
 
 /** @brief Close (NULL is fine); logs still aside are put back. */
 void pm_checkpoint_close(pm_checkpoint *ck);

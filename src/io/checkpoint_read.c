@@ -1,5 +1,6 @@
 /* Reading DIR/checkpoint.h5 back into a run (checkpoint.h; the layout is docs/checkpoint.md). */
 #include "io/checkpoint.h"
+#include "io/checkpoint_contact.h"
 #include "io/checkpoint_h5.h"
 #include "io/checkpoint_lme.h"
 #include "io/checkpoint_meshfree.h"
@@ -252,7 +253,14 @@ static int read_flow(pm_checkpoint *ck, hid_t g, void *arg)
 
 #define FORCE_COLS (sizeof(pm_contact_force) / sizeof(double))
 
-static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
+
+
+/* After the logs were opened (they start the impulses afresh): the surfaces' impulses since the last
+ * forces.csv row, their last forces and the wall profiles' impulses. */
+static int read_contact_logged(pm_checkpoint *ck, hid_t g, void *arg);
+
+/* The surfaces' impulses since the last forces.csv row and their last forces. */
+static int read_contact_forces(pm_checkpoint *ck, hid_t g, void *arg)
 {
     pm_contact *ct = ((pm_sim *)arg)->contact;
     const size_t n = ct->n_surfaces;
@@ -267,6 +275,14 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
         memcpy(&ct->surface[k].f, a + (n + k) * FORCE_COLS, sizeof(pm_contact_force));
     }
     free(a);
+    return rc;
+}
+
+static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
+{
+    pm_contact *ct = ((pm_sim *)arg)->contact;
+    const size_t n = ct->n_surfaces;
+    int rc = read_contact_forces(ck, g, arg);
     size_t rows = 0;
     if (!rc)
         rc = ck_rows(&ck->f, g, "held", &rows);
@@ -282,7 +298,7 @@ static int read_contact(pm_checkpoint *ck, hid_t g, void *arg)
         rc = ct->held && ct->held_next ? ck_read(&ck->f, g, "held", CK_DOUBLE, ct->held, want, PM_DIM)
                                        : pm_error_set(PM_ENOMEM, "out of memory reading a checkpoint");
     }
-    return rc;
+    return rc ? rc : pm_ck_read_points(&ck->f, ck->path, g, ct);
 }
 
 static int read_meshfree(pm_checkpoint *ck, hid_t g, void *arg)
@@ -451,6 +467,7 @@ static int read_multibody(pm_checkpoint *ck, hid_t g, void *arg)
 typedef struct output_args {
     pm_output *out;
     pm_forces_log *forces;
+    double *walls_t_last;
 } output_args;
 
 static int read_output(pm_checkpoint *ck, hid_t g, void *arg)
@@ -487,16 +504,28 @@ static int read_output(pm_checkpoint *ck, hid_t g, void *arg)
     pm_check(rc);
     pm_check(get_long(&ck->f, g, "forces_rows", &a->forces->rows));
     pm_check(get_double(&ck->f, g, "forces_t_last", &a->forces->t_last));
-    return get_double(&ck->f, g, "forces_next", &a->forces->next);
+    pm_check(get_double(&ck->f, g, "forces_next", &a->forces->next));
+    /* a checkpoint written before the wall profiles' time was kept: the profile starts at the stop */
+    if (a->walls_t_last && H5Aexists(g, "walls_t_last") > 0)
+        pm_check(get_double(&ck->f, g, "walls_t_last", a->walls_t_last));
+    return PM_OK;
+}
+
+static int read_contact_logged(pm_checkpoint *ck, hid_t g, void *arg)
+{
+    const int rc = read_contact_forces(ck, g, arg);
+    return rc ? rc : pm_ck_read_profile_impulses(&ck->f, ck->path, g, ((pm_sim *)arg)->contact);
 }
 
 int pm_checkpoint_restore_outputs(pm_checkpoint *ck, pm_sim *s, pm_output *out, pm_forces_log *forces,
-                                  pm_ck_logs *logs)
+                                  double *walls_t_last, pm_ck_logs *logs)
 {
-    output_args a = {out, forces};
+    output_args a = {out, forces, walls_t_last};
     int rc = in_group(ck, "output", read_output, &a);
     if (!rc && s->mb) /* after contact_forces.csv was opened, which starts the impulses afresh */
         rc = in_group(ck, "multibody", read_multibody, s->mb);
+    if (!rc && s->contact) /* after forces.csv and the wall profiles were opened, which start afresh */
+        rc = in_group(ck, "contact", read_contact_logged, s);
     const int rb = logs_back(ck, 1);
     if (!rc)
         rc = rb;

@@ -1,5 +1,6 @@
 /* Writing DIR/checkpoint.h5 (checkpoint.h; the layout is docs/checkpoint.md). */
 #include "io/checkpoint.h"
+#include "io/checkpoint_contact.h"
 #include "io/checkpoint_h5.h"
 #include "io/checkpoint_lme.h"
 #include "io/checkpoint_meshfree.h"
@@ -218,6 +219,10 @@ static int write_contact(const ck_file *f, hid_t g, const pm_ck_run *r)
     /* implicit steps build each contact node's force on the one it held at the last step */
     if (!rc)
         rc = ck_write(f, g, "held", CK_DOUBLE, ct->held, ct->held ? n * ct->n_nodes + ct->n_own_rows : 0, PM_DIM);
+    if (!rc)
+        rc = pm_ck_write_points(f, g, ct);
+    if (!rc)
+        rc = pm_ck_write_profile_impulses(f, g, ct);
     return rc;
 }
 
@@ -302,6 +307,8 @@ static int write_output(const ck_file *f, hid_t g, const pm_ck_run *r)
     const pm_forces_log *fl = r->forces;
     pm_check(put_long(f, g, "forces_rows", fl->rows));
     pm_check(put_double(f, g, "forces_t_last", fl->t_last));
+    if (r->walls_t_last)
+        pm_check(put_double(f, g, "walls_t_last", *r->walls_t_last));
     return put_double(f, g, "forces_next", fl->next);
 }
 

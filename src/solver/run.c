@@ -278,9 +278,10 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         pm_ck_logs_add(&logs, "contact_forces.csv", &s->mb->log);
     ckr.out = out;
     ckr.forces = &forces;
+    ckr.walls_t_last = walls.n ? &walls.t_last : NULL;
     ckr.logs = &logs;
     if (!rc && ck)
-        rc = pm_checkpoint_restore_outputs(ck, s, out, &forces, &logs);
+        rc = pm_checkpoint_restore_outputs(ck, s, out, &forces, walls.n ? &walls.t_last : NULL, &logs);
     pm_checkpoint_close(ck);
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);

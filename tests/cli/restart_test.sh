@@ -3,7 +3,8 @@
 # outright after a periodic checkpoint, and then continued with --restart writes the same bytes into every
 # output file (frames, pictures, pvd, every CSV log) as the same run never stopped; cmp decides, nothing is
 # tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
-# implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), two
+# implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), explicit
+# friction sides (the touching points' impulses carry over steps), two
 # bodies in contact (contact_pairs), MPM with LME (each particle's kept stencil), GMM with MLS and with
 # LME, RKPM, implicit GMM (the node cloud, its cell list, the nodes' velocity and acceleration history). What is not covered (a strength reduction, another case, a
 # damaged file) is refused with exit 2.
@@ -74,6 +75,11 @@ c["boundary_conditions"][0]["coefficient"] = 0.1
 c["analysis"]["end_time"] = 0.04
 c["output"] = {"interval": 0.004}
 json.dump(c, open("implicit_friction.json", "w"), indent=1)
+# explicit friction sides: each step's sweeps at the touching points start from the last step's impulses
+c = json.load(open(src + "/tests/verification/cases/janssen_bin.json"))
+c["analysis"]["end_time"] = 0.4
+c["output"] = {"interval": 0.02}
+json.dump(c, open("explicit_friction.json", "w"), indent=1)
 # a checkpoint every 0.1 s of a 0.6 s run: killed outright (SIGKILL, no checkpoint of its own) after
 # the frame at 0.3 s, the run continues from the last checkpoint and replaces what was written after it
 c = json.load(open("musl_mc.json"))
@@ -109,6 +115,7 @@ stop_and_continue musl_mc INT particles_000004.vtu 130 2
 stop_and_continue flow TERM particles_000005.vtu 143
 stop_and_continue implicit INT particles_000005.vtu 130
 stop_and_continue implicit_friction INT particles_000004.vtu 130
+stop_and_continue explicit_friction INT particles_000010.vtu 130
 stop_and_continue contact_pairs INT particles_000010.vtu 130
 stop_and_continue periodic KILL particles_000016.vtu 137
 stop_and_continue mpm_lme INT particles_000012.vtu 130 2

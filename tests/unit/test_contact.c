@@ -571,12 +571,15 @@ static void laws_act_relative_to_a_moving_obstacle(void **st)
  * x = 0..0.3, moving down at 1 m/s, every node at rest with mass 100 (more than a particle's 15.6 kg, so
  * every node answers with its own). After the law no touching point
  * approaches it (its stencil's velocity relative to the obstacle along the point's normal at most its
- * gap / dt; the complementarity holds to the sweeps' tolerance, 1e-9 m/s, so 1e-8), those it pushed
+ * gap / dt; the complementarity holds to the sweeps' stop: no impulse changed in the last sweep by more
+ * than 1e-4 of the largest, about 180 N s/m here, which moves a node of mass 100 by at most 1.8e-4 m/s,
+ * so 2e-4 m/s against the 1 m/s approach the law removes), those it pushed
  * (lam_n > 0) move with it exactly so; the particle a cell off its end (gap 0.094 m) is left alone; the
  * nodes of no touching particle's stencil (x >= 0.75) keep their velocity; the surface's normal force is
  * the points' normal impulses over dt and its force the momentum the nodes gained over dt. */
 static void obstacle_points_hold_the_touching_particles(void **st)
 {
+    const double VN_TOL = 2e-4;
     (void)st;
     pm_case c;
     pm_sim *s = small_sim(&c, "mpm", "linear",
@@ -606,10 +609,10 @@ static void obstacle_points_hold_the_touching_particles(void **st)
         for (int j = 0; j < pt->n; j++)
             for (int d = 0; d < PM_DIM; d++)
                 vn += pt->w[j] * v[PM_DIM * pt->node[j] + d] * pt->normal[d];
-        assert_true(vn <= pt->allow / dt + 1e-8);
+        assert_true(vn <= pt->allow / dt + VN_TOL);
         if (pt->lam_n > 0) {
             pushed++;
-            assert_true(fabs(vn - pt->allow / dt) <= 1e-8);
+            assert_true(fabs(vn - pt->allow / dt) <= VN_TOL);
         }
         if (pt->allow > 0.05) {
             far++;

@@ -164,6 +164,10 @@ static int check_case(const char *rel, const char *label, const char *csv)
     }
     snprintf(q, sizeof q, "%s: floor layer (%.2f m): wall-normal traction vs Janssen (K0), worst", label, B);
     vu_report("Janssen bin", q, e_floor, 0, e_floor, -1, secs);
+    /* the cost of the friction side's law, for docs/performance.md (reported) */
+    if (s->contact->pt_solves)
+        printf("  %s: touching-point sweeps per step %.1f over %zu steps\n", label,
+               (double)s->contact->pt_sweeps / (double)s->contact->pt_solves, s->contact->pt_solves);
     pm_sim_destroy(s);
     pm_case_free(&c);
     return ok;
