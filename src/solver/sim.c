@@ -151,6 +151,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     if (rc || (rc = pm_flow_create(c, &s->grid, max_state(c), &s->flow, &room)) != 0)
         goto fail;
     if ((rc = pm_particles_alloc_capacity(&s->p, total, total + room, max_state(c))) != 0 ||
+        (c->analysis.transfer == PM_TRANSFER_APIC && (rc = pm_particles_enable_affine(&s->p)) != 0) ||
         (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 || (meshfree && (rc = pm_mf_create(s, n_threads)) != 0) ||
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes * (s->mb ? (size_t)s->mb->n_fields : 1), n_threads,
                           s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
