@@ -12,6 +12,7 @@
 #include "flow.h"
 #include "core/seed.h"
 #include "fbar.h"
+#include "xpic.h"
 #include "meshfree_internal.h"
 #include "point_update.h"
 #include "scatter.h"
@@ -160,7 +161,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         /* one field: the friction sides act where the material touches them (src/contact/friction.c) */
         (!meshfree && !s->mb && (rc = pm_contact_points_reserve(s->contact, &s->grid, s->p.cap)) != 0) ||
         (s->mb && (rc = pm_multibody_attach_surfaces(s->mb, pm_contact_n_surfaces(s->contact))) != 0) ||
-        (rc = pm_fbar_create(s)) != 0 ||
+        (rc = pm_fbar_create(s)) != 0 || (rc = pm_xpic_create(s)) != 0 ||
         (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
         goto fail;
     if (s->mb)
@@ -206,6 +207,7 @@ void pm_sim_destroy(pm_sim *s)
         return;
     pm_implicit_free(s);
     pm_fbar_destroy(s);
+    free(s->xpic);
     pm_approx_destroy(s->approx);
     pm_mf_destroy(s);
     pm_particles_free(&s->p);
