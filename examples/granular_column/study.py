@@ -2,7 +2,7 @@
 """Run-out study of planar cohesionless column collapses against the laws of Lube et al. (2005).
 
     python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--cells-y 32] [--flip 1.0] [--fbar]
-                     [--transfer apic] [--material '{"key": value}'] [--jobs 2] [--keep]
+                     [--transfer apic|xpic] [--xpic-order 5] [--material '{"key": value}'] [--jobs 2] [--keep]
 
 For every aspect ratio a = H / L0 and mesh (cells per column width L0 = 1 m) it writes a case from
 case.json (the column, the grid and the end time scaled with a), runs it with one thread, and
@@ -74,12 +74,14 @@ def centre_x(vtu):
     return sum(m[i] * pts[3 * i] for i in range(n)) / sum(m)
 
 
-def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, cells_y=None):
+def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, cells_y=None, xpic_order=None):
     c = copy.deepcopy(base)
     if fbar:
         c["analysis"]["fbar"] = "cell"
     if transfer:
         c["analysis"]["transfer"] = transfer
+    if xpic_order:
+        c["analysis"]["xpic_order"] = xpic_order
     if material:
         c["materials"][0].update(material)
     L0, h = 1.0, 1.0 / cells
@@ -103,13 +105,14 @@ def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, ce
     return c
 
 
-def run_one(pmech, work, a, cells, flip, keep, fbar=False, transfer=None, material=None, cells_y=None):
-    name = "a%g_h%d%s%s%s" % (a, cells, "_y%d" % cells_y if cells_y else "", "_fbar" if fbar else "",
-                              "_" + transfer if transfer else "")
+def run_one(pmech, work, a, cells, flip, keep, fbar=False, transfer=None, material=None, cells_y=None,
+            xpic_order=None):
+    name = "a%g_h%d%s%s%s%s" % (a, cells, "_y%d" % cells_y if cells_y else "", "_fbar" if fbar else "",
+                                "_" + transfer if transfer else "", "%d" % xpic_order if xpic_order else "")
     d = work / name
     d.mkdir(parents=True, exist_ok=True)
     base = json.loads((HERE / "case.json").read_text())
-    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y)
+    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y, xpic_order)
     (d / "case.json").write_text(json.dumps(case, indent=1))
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
     t0 = time.time()
@@ -146,7 +149,8 @@ def main():
                     help="cells per L0 vertically (flat cells); default: as --cells")
     ap.add_argument("--flip", type=float, default=None)
     ap.add_argument("--fbar", action="store_true", help="analysis.fbar = cell")
-    ap.add_argument("--transfer", default=None, help="analysis.transfer (flip or apic)")
+    ap.add_argument("--transfer", default=None, help="analysis.transfer (flip, apic or xpic)")
+    ap.add_argument("--xpic-order", type=int, default=None, help="analysis.xpic_order (with --transfer xpic)")
     ap.add_argument("--material", default=None, help="JSON object of material keys to set")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default="study.out")
@@ -158,7 +162,7 @@ def main():
     rows = []
     with concurrent.futures.ThreadPoolExecutor(o.jobs) as ex:
         futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep, o.fbar, o.transfer,
-                          json.loads(o.material) if o.material else None, o.cells_y) for a, n in runs]
+                          json.loads(o.material) if o.material else None, o.cells_y, o.xpic_order) for a, n in runs]
         for f in concurrent.futures.as_completed(futs):
             r = f.result()
             rows.append(r)

@@ -40,7 +40,8 @@ typedef enum {
 /** How particle velocities go to the grid and back in explicit MPM (analysis.transfer). */
 typedef enum {
     PM_TRANSFER_FLIP = 0, /**< FLIP with an optional PIC share (analysis.flip) */
-    PM_TRANSFER_APIC = 1  /**< affine particle-in-cell: velocity plus a per-particle velocity gradient */
+    PM_TRANSFER_APIC = 1, /**< affine particle-in-cell: velocity plus a per-particle velocity gradient */
+    PM_TRANSFER_XPIC = 2  /**< extended particle-in-cell of order analysis.xpic_order (Hammerquist and Nairn 2017) */
 } pm_transfer;
 /** When a trial factor of a strength reduction counts as failed (analysis.strength_reduction.criterion). */
 typedef enum {
@@ -223,7 +224,8 @@ typedef struct pm_case {
         double gravity_ramp_time;
         double damping;
         double pic;               /**< MUSL: PIC share of the particle velocity update, 1 - the key flip (0: FLIP) */
-        pm_transfer transfer;     /**< MUSL: FLIP/PIC or APIC particle-grid transfer */
+        pm_transfer transfer;     /**< MUSL: FLIP/PIC, APIC or XPIC particle-grid transfer */
+        int xpic_order;           /**< XPIC's order m (analysis.xpic_order; 1 is PIC) */
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */

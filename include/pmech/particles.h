@@ -50,8 +50,9 @@ typedef struct pm_particles {
     double *eps_p;     /**< equivalent plastic strain */
     double *state;     /**< material history, n_state per particle */
     double *hsize;     /**< initial half-size of the particle's domain (x, y), 2 per particle */
+    size_t n_affine;   /**< entries of C per particle: PM_DIM x PM_DIM with APIC, 0 otherwise */
     double *C;         /**< APIC's affine velocity matrix (row-major velocity gradient of the last grid-to-particle
-                            transfer), PM_DIM x PM_DIM per particle; zero with other transfers */
+                            transfer), n_affine per particle: allocated by pm_particles_enable_affine() only */
     int32_t *material; /**< index into the case's material list */
     int32_t *body;     /**< index into the case's body list */
     int32_t *cell;     /**< background cell containing the particle (-1 = outside) */
@@ -76,8 +77,17 @@ int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state);
 int pm_particles_alloc_capacity(pm_particles *p, size_t n, size_t cap, size_t n_state);
 
 /**
+ * @brief Give every particle (all cap of them) APIC's affine matrix C, zeroed; n_affine becomes
+ *        PM_DIM x PM_DIM. Without this call C holds no particle's entries (n_affine 0). Does nothing
+ *        when it already has them.
+ * @return PM_OK, or PM_ENOMEM with a message giving the bytes requested
+ */
+int pm_particles_enable_affine(pm_particles *p);
+
+/**
  * @brief Copy @p count particles, every field, from @p src (from index @p from) into @p dst (at index
- *        @p at). Both must have the same n_state; the ranges must lie within their capacities. n of
+ *        @p at). Both must have the same n_state; where @p src has no affine matrices and @p dst has,
+ *        the copies' are zeroed. The ranges must lie within their capacities. n of
  *        neither changes: the caller appends by raising dst->n.
  */
 void pm_particles_copy(pm_particles *dst, size_t at, const pm_particles *src, size_t from, size_t count);
@@ -93,7 +103,8 @@ size_t pm_particles_remove(pm_particles *p, const uint8_t *drop);
 /** @brief Free every array and zero the struct. Safe on a zeroed struct. */
 void pm_particles_free(pm_particles *p);
 
-/** @brief Bytes of memory one particle takes with @p n_state history variables. */
+/** @brief Bytes of memory one particle takes with @p n_state history variables, without APIC's affine
+ *         matrix (pm_particles_enable_affine() adds PM_DIM x PM_DIM doubles). */
 size_t pm_particles_bytes_per_particle(size_t n_state);
 
 /**

@@ -14,8 +14,12 @@ typedef struct field_row {
     const char *name;  /* as files that store every field call it (checkpoints) */
     size_t offset;     /* of the array pointer inside pm_particles */
     size_t elem;       /* bytes of one entry */
-    size_t width;      /* entries per particle; 0: n_state */
+    size_t width;      /* entries per particle; 0: n_state; AFFINE: n_affine */
 } field_row;
+
+/* The width of APIC's affine matrix: PM_DIM x PM_DIM once pm_particles_enable_affine() ran, else 0, so
+ * that runs with other transfers neither allocate nor sort, copy or store it. */
+#define AFFINE ((size_t)-1)
 
 #define FIELD(member, type, w) { #member, offsetof(pm_particles, member), sizeof(type), (w) }
 static const field_row fields[] = {
@@ -23,7 +27,7 @@ static const field_row fields[] = {
     FIELD(a, double, PM_DIM),      FIELD(mass, double, 1),      FIELD(vol, double, 1),
     FIELD(vol0, double, 1),        FIELD(F, double, PM_NF),     FIELD(stress, double, PM_NS),
     FIELD(eps_p, double, 1),       FIELD(state, double, 0),     FIELD(hsize, double, PM_DIM),
-    FIELD(C, double, PM_DIM * PM_DIM),
+    FIELD(C, double, AFFINE),
     FIELD(material, int32_t, 1),   FIELD(body, int32_t, 1),     FIELD(cell, int32_t, 1),
     FIELD(id, int32_t, 1),
 };
@@ -37,6 +41,8 @@ static void **field_ptr(pm_particles *p, size_t k)
 
 static size_t field_width(const pm_particles *p, size_t k)
 {
+    if (fields[k].width == AFFINE)
+        return p->n_affine;
     return fields[k].width ? fields[k].width : p->n_state;
 }
 
@@ -58,7 +64,8 @@ size_t pm_particles_bytes_per_particle(size_t n_state)
 {
     size_t b = 0;
     for (size_t k = 0; k < N_FIELDS; k++)
-        b += fields[k].elem * (fields[k].width ? fields[k].width : n_state);
+        if (fields[k].width != AFFINE)
+            b += fields[k].elem * (fields[k].width ? fields[k].width : n_state);
     return b;
 }
 
@@ -74,7 +81,8 @@ int pm_particles_alloc_capacity(pm_particles *p, size_t n, size_t cap, size_t n_
     for (size_t k = 0; k < N_FIELDS; k++) {
         const size_t w = field_width(p, k);
         void **arr = field_ptr(p, k);
-        *arr = calloc(cnt * (w ? w : 1), fields[k].elem);
+        /* an empty affine field still gets one entry: a valid pointer for the generic walks */
+        *arr = calloc(fields[k].width == AFFINE ? 1 : cnt * (w ? w : 1), fields[k].elem);
         if (!*arr)
             goto fail;
     }
@@ -92,6 +100,21 @@ int pm_particles_alloc(pm_particles *p, size_t n, size_t n_state)
     return pm_particles_alloc_capacity(p, n, n, n_state);
 }
 
+int pm_particles_enable_affine(pm_particles *p)
+{
+    const size_t w = PM_DIM * PM_DIM, cnt = p->cap ? p->cap : 1;
+    if (p->n_affine == w)
+        return PM_OK;
+    double *C = calloc(cnt * w, sizeof *C);
+    if (!C)
+        return pm_error_set(PM_ENOMEM, "cannot allocate the affine matrices of %zu particles (%zu bytes)", cnt,
+                            cnt * w * sizeof *C);
+    free(p->C);
+    p->C = C;
+    p->n_affine = w;
+    return PM_OK;
+}
+
 void pm_particles_copy(pm_particles *dst, size_t at, const pm_particles *src, size_t from, size_t count)
 {
     for (size_t k = 0; k < N_FIELDS; k++) {
@@ -99,6 +122,10 @@ void pm_particles_copy(pm_particles *dst, size_t at, const pm_particles *src, si
         if (row == 0 || count == 0)
             continue;
         char *d = *field_ptr(dst, k);
+        if (field_width(src, k) != field_width(dst, k)) { /* only the affine field: a source has none */
+            memset(d + at * row, 0, count * row);
+            continue;
+        }
         const char *s = *(void *const *)((const char *)src + fields[k].offset);
         memcpy(d + at * row, s + from * row, count * row);
     }

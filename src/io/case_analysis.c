@@ -16,7 +16,7 @@ static const char *const density_updates[] = {"deformation", "positions", NULL};
 static const char *const analysis_types[] = {"explicit", "implicit", "quasi_static", NULL};
 static const char *const schemes[] = {"musl", "usl", "usf", "newmark_pc", NULL};
 static const char *const fbar_modes[] = {"none", "cell", NULL};
-static const char *const transfers[] = {"flip", "apic", NULL};
+static const char *const transfers[] = {"flip", "apic", "xpic", NULL};
 
 /*
  * analysis.strength_reduction. A trial is judged by whether its load steps converge, so the analysis
@@ -148,19 +148,29 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
                             NULL);
     pm_check(jr_enum(&cx, a, "transfer", 0, transfers, PM_TRANSFER_FLIP, &v));
     c->analysis.transfer = (pm_transfer)v;
-    if (c->analysis.transfer == PM_TRANSFER_APIC) {
-        /* the affine part is carried through MUSL's re-projection, and needs the fixed grid's nodes */
+    if (c->analysis.transfer != PM_TRANSFER_FLIP) {
+        const char *name = c->analysis.transfer == PM_TRANSFER_APIC ? "apic" : "xpic";
+        /* both update the particles in MUSL's re-projection, on the fixed grid's nodes */
         if (c->analysis.type != PM_ANALYSIS_EXPLICIT || c->analysis.scheme != PM_SCHEME_MUSL ||
             c->method != PM_METHOD_MPM)
-            return pm_case_fail(c->file, "analysis.transfer",
-                                "\"apic\" needs method 'mpm', an explicit analysis and scheme musl; use \"flip\"",
-                                NULL);
+            return pm_error_set(PM_EINPUT,
+                                "%s: analysis.transfer: \"%s\" needs method 'mpm', an explicit analysis and scheme "
+                                "musl; use \"flip\"",
+                                c->file, name);
         if (c->analysis.pic > 0)
-            return pm_case_fail(c->file, "analysis.flip",
-                                "blends FLIP with PIC; with transfer \"apic\" the update is APIC's own, so remove "
-                                "flip or set it to 1",
-                                NULL);
+            return pm_error_set(PM_EINPUT,
+                                "%s: analysis.flip: blends FLIP with PIC; with transfer \"%s\" the update is its "
+                                "own, so remove flip or set it to 1",
+                                c->file, name);
     }
+    long order;
+    /* the series' alternating binomial sums lose round-off in proportion to 2^m: 2e-11 of a uniform
+     * velocity at m = 20 (test_xpic), twice that for every order above */
+    pm_check(jr_int(&cx, a, "xpic_order", 0, 5, 1, 20, &order));
+    c->analysis.xpic_order = (int)order;
+    if (json_object_get(a, "xpic_order") && c->analysis.transfer != PM_TRANSFER_XPIC)
+        return pm_case_fail(c->file, "analysis.xpic_order", "is the order of transfer \"xpic\"; set transfer "
+                            "to \"xpic\" or remove it", NULL);
     pm_check(jr_number(&cx, a, "max_steps", 0, 1e8, &c->analysis.max_steps));
     pm_check(jr_range(&cx, "max_steps", c->analysis.max_steps, 1, 0, 1e15, 0));
     long n;

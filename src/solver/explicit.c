@@ -5,6 +5,7 @@
  */
 #include "explicit_internal.h"
 #include "apic.h"
+#include "xpic.h"
 #include "fbar.h"
 #include "flow.h"
 #include "meshfree_internal.h"
@@ -49,6 +50,8 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
     if (musl) {
         if (apic)
             pm_apic_musl_project(s);
+        else if (s->xpic) /* transfer "xpic", MUSL only (case_analysis.c) */
+            pm_xpic_musl_project(s);
         else
             pm_xp_musl_project(s, dt);
         /* nd->vel now holds the re-projected velocity used for the strain rate */

@@ -12,6 +12,7 @@
 #include "flow.h"
 #include "core/seed.h"
 #include "fbar.h"
+#include "xpic.h"
 #include "meshfree_internal.h"
 #include "point_update.h"
 #include "scatter.h"
@@ -151,6 +152,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     if (rc || (rc = pm_flow_create(c, &s->grid, max_state(c), &s->flow, &room)) != 0)
         goto fail;
     if ((rc = pm_particles_alloc_capacity(&s->p, total, total + room, max_state(c))) != 0 ||
+        (c->analysis.transfer == PM_TRANSFER_APIC && (rc = pm_particles_enable_affine(&s->p)) != 0) ||
         (rc = pm_seed_fill(c, &s->grid, &s->p)) != 0 || (meshfree && (rc = pm_mf_create(s, n_threads)) != 0) ||
         (rc = alloc_nodal(&s->nd, s->grid.n_nodes * (s->mb ? (size_t)s->mb->n_fields : 1), n_threads,
                           s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
@@ -159,7 +161,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
         /* one field: the friction sides act where the material touches them (src/contact/friction.c) */
         (!meshfree && !s->mb && (rc = pm_contact_points_reserve(s->contact, &s->grid, s->p.cap)) != 0) ||
         (s->mb && (rc = pm_multibody_attach_surfaces(s->mb, pm_contact_n_surfaces(s->contact))) != 0) ||
-        (rc = pm_fbar_create(s)) != 0 ||
+        (rc = pm_fbar_create(s)) != 0 || (rc = pm_xpic_create(s)) != 0 ||
         (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
         goto fail;
     if (s->mb)
@@ -205,6 +207,7 @@ void pm_sim_destroy(pm_sim *s)
         return;
     pm_implicit_free(s);
     pm_fbar_destroy(s);
+    free(s->xpic);
     pm_approx_destroy(s->approx);
     pm_mf_destroy(s);
     pm_particles_free(&s->p);

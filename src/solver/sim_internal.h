@@ -77,6 +77,7 @@ struct pm_sim {
     struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
     struct pm_contact *contact; /**< contact surfaces (friction conditions) and the nodes touching them */
     struct pm_fbar *fbar; /**< F-bar volumetric averaging (analysis.fbar; NULL when off) */
+    double *xpic;        /**< XPIC's two nodal work vectors, 2 x PM_DIM x nd.n_all (NULL with other transfers) */
     struct pm_mf *mf;    /**< GMM/RKPM: node cloud, moving nodes, boundary rows (NULL for MPM); grid then
                               holds the cloud's nodes without cells */
     pm_scatter scatter;  /**< scatter strategy of the explicit steps (set at creation only) */

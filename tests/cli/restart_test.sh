@@ -4,8 +4,9 @@
 # output file (frames, pictures, pvd, every CSV log) as the same run never stopped; cmp decides, nothing is
 # tolerated. Cases: explicit MUSL Mohr-Coulomb with probes and pictures on two threads, sources and sinks,
 # implicit Newmark dynamics, implicit friction (each contact node's force carries over steps), explicit
-# friction sides (the touching points' impulses carry over steps), two
-# bodies in contact (contact_pairs), MPM with LME (each particle's kept stencil), GMM with MLS and with
+# friction sides (the touching points' impulses and the wall profiles carry over steps), two
+# bodies in contact (contact_pairs), MPM with LME (each particle's kept stencil), APIC (each particle's
+# affine matrix) and XPIC, GMM with MLS and with
 # LME, RKPM, implicit GMM (the node cloud, its cell list, the nodes' velocity and acceleration history). What is not covered (a strength reduction, another case, a
 # damaged file) is refused with exit 2.
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
@@ -109,6 +110,12 @@ c = json.load(open("musl_mc.json"))
 c["shape_function"] = "lme"
 c["output"] = {"interval": 0.02}
 json.dump(c, open("mpm_lme.json", "w"), indent=1)
+# APIC: each particle's affine matrix, the only particle field of its own; XPIC: nothing beyond the
+# velocities (its filter is rebuilt every step)
+for t in ("apic", "xpic"):
+    c = json.load(open("musl_mc.json"))
+    c["analysis"]["transfer"] = t
+    json.dump(c, open("musl_" + t + ".json", "w"), indent=1)
 PY
 # two threads: the colour blocks of the parallel scatter decide the order of additions into shared nodes
 stop_and_continue musl_mc INT particles_000004.vtu 130 2
@@ -119,6 +126,8 @@ stop_and_continue explicit_friction INT particles_000010.vtu 130
 stop_and_continue contact_pairs INT particles_000010.vtu 130
 stop_and_continue periodic KILL particles_000016.vtu 137
 stop_and_continue mpm_lme INT particles_000012.vtu 130 2
+stop_and_continue musl_apic INT particles_000004.vtu 130 2
+stop_and_continue musl_xpic INT particles_000004.vtu 130 2
 # the meshfree runs, with the number of cell-list builds: some before the stop and more after it, so the
 # continued run goes on from a restored cell list and rebuilds it as the uninterrupted run did
 builds() { h5dump -a /meshfree/builds "$1" 2>/dev/null | sed -n 's/.*(0): \([0-9]*\).*/\1/p'; }
@@ -134,6 +143,10 @@ done
 n=$(python3 -c "import json; print(json.load(open('musl_mc.full/run.json'))['particles'])")
 check "h5dump reads /particles/x as $n x 2" sh -c \
   "h5dump -H -d /particles/x musl_mc.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 2 ) / ( $n, 2 ) }'"
+check "h5dump reads /particles/C as $n x 4 with APIC" sh -c \
+  "h5dump -H -d /particles/C musl_apic.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 4 ) / ( $n, 4 ) }'"
+check "h5dump reads /particles/C as $n x 0 with FLIP (no affine matrices)" sh -c \
+  "h5dump -H -d /particles/C musl_mc.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 0 ) / ( $n, 0 ) }'"
 check "h5dump reads /time/t as the end time" sh -c \
   "h5dump -a /time/t musl_mc.full/checkpoint.h5 | grep -q '(0): 0.6\$'"
 
