@@ -43,6 +43,15 @@ int pm_ck_write_points(const ck_file *f, hid_t g, const pm_contact *ct)
     return rc ? rc : put_double(f, g, "points_dt", ct->pt_dt);
 }
 
+/* Whether a node's profile row (1 + PM_DIM values) holds anything. */
+static int has_impulse(const double *J)
+{
+    int any = 0;
+    for (int d = 0; d <= PM_DIM; d++)
+        any |= J[d] != 0;
+    return any;
+}
+
 /* The wall profiles' impulses since their last frame (pm_contact_surface::node_impulse): one row per
  * node that has one, (surface, node, the 1 + PM_DIM values), so that a profile spanning the stop is the
  * uninterrupted run's. */
@@ -51,11 +60,7 @@ int pm_ck_write_profile_impulses(const ck_file *f, hid_t g, const pm_contact *ct
     size_t rows = 0;
     for (size_t k = 0; k < ct->n_surfaces; k++)
         for (size_t n = 0; ct->surface[k].node_impulse && n < ct->n_nodes; n++) {
-            const double *J = ct->surface[k].node_impulse + (size_t)(1 + PM_DIM) * n;
-            int any = 0;
-            for (int d = 0; d <= PM_DIM; d++)
-                any |= J[d] != 0;
-            rows += any;
+            rows += has_impulse(ct->surface[k].node_impulse + (size_t)(1 + PM_DIM) * n);
         }
     double *a = malloc((rows ? rows : 1) * PROFILE_COLS * sizeof *a);
     if (!a)
@@ -64,10 +69,7 @@ int pm_ck_write_profile_impulses(const ck_file *f, hid_t g, const pm_contact *ct
     for (size_t k = 0; k < ct->n_surfaces; k++)
         for (size_t n = 0; ct->surface[k].node_impulse && n < ct->n_nodes; n++) {
             const double *J = ct->surface[k].node_impulse + (size_t)(1 + PM_DIM) * n;
-            int any = 0;
-            for (int d = 0; d <= PM_DIM; d++)
-                any |= J[d] != 0;
-            if (!any)
+            if (!has_impulse(J))
                 continue;
             double *row = a + q++ * PROFILE_COLS;
             row[0] = (double)k;
