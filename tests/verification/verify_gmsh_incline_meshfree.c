@@ -42,15 +42,8 @@ static const char *dir = ".";
  * slope from s = 0.1 to 0.3 along it. */
 static void make_case(int deg, const char *method, pm_case *c)
 {
-    const double th = deg * M_PI / 180.0, y0 = 0.4, BW = 0.2, H = 0.06, s0 = 0.1;
-    const double e[2] = {cos(th), -sin(th)}, n[2] = {sin(th), cos(th)};
-    const double p0[2] = {s0 * e[0], y0 + s0 * e[1]};
-    double q[4][2];
-    for (int k = 0; k < 4; k++) {
-        const double a = (k == 1 || k == 2) ? BW : 0.0, b = k >= 2 ? H : 0.0;
-        q[k][0] = p0[0] + a * e[0] + b * n[0];
-        q[k][1] = p0[1] + a * e[1] + b * n[1];
-    }
+    double q[4][PM_DIM];
+    vu_slope_block(deg, 0.4, 0.1, 0.2, 0.06, q);
     char text[4096], path[1024];
     snprintf(text, sizeof text,
              "{ \"dimension\": 2, \"method\": \"%s\", \"shape_function\": \"%s\","
