@@ -152,12 +152,6 @@ static int dp_update(const pm_material *m, const pm_material_step *in, double *s
     return isfinite(mean) ? PM_OK : PM_ESIM;
 }
 
-static double dp_eps_p(const pm_material *m, const double *state)
-{
-    (void)m;
-    return state[0];
-}
-
 const pm_material_ops pm_drucker_prager_ops = {
     .name = "drucker_prager",
     .elastic_pair = 1,
@@ -168,7 +162,7 @@ const pm_material_ops pm_drucker_prager_ops = {
     .init_state = NULL,
     .update = dp_update,
     .wave_speed = pm_material_elastic_wave_speed,
-    .plastic_strain = dp_eps_p,
+    .plastic_strain = pm_plastic_strain_state0,
     .strain_energy = pm_material_elastic_energy,
     .reduce_strength = pm_reduce_coulomb_strength,
 };

@@ -166,12 +166,6 @@ static void gr_density_state(const pm_material *m, double rho_ratio, double *sta
         state[1] = fmax(state[1], -log(rho_ratio));
 }
 
-static double gr_eps_p(const pm_material *m, const double *state)
-{
-    (void)m;
-    return state[0];
-}
-
 /* Tangent moduli at the state's volumetric strain. */
 static void gr_moduli(const pm_material *m, const double *state, double *Kt, double *G)
 {
@@ -219,7 +213,7 @@ const pm_material_ops pm_granular_ops = {
     .wave_speed = gr_wave_speed,
     .rate_viscosity = gr_rate_viscosity,
     .density_state = gr_density_state,
-    .plastic_strain = gr_eps_p,
+    .plastic_strain = pm_plastic_strain_state0,
     .strain_energy = gr_energy,
     .reduce_strength = NULL, /* no Coulomb strength for the search to lower */
 };

@@ -97,6 +97,12 @@ double pm_material_elastic_energy(const pm_material *m, const pm_material_step *
     return 0.5 * p * p / m->K + 0.25 * ss / m->G;
 }
 
+double pm_plastic_strain_state0(const pm_material *m, const double *state)
+{
+    (void)m;
+    return state[0];
+}
+
 /* Inverse of a general 3x3 row-major matrix; returns the determinant (0: singular, B untouched). */
 static double inv3(const double A[9], double B[9])
 {

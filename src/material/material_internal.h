@@ -25,6 +25,13 @@ extern const pm_material_ops pm_granular_ops;
  */
 int pm_reduce_coulomb_strength(pm_material *m, double factor);
 
+/*
+ * pm_material_ops::plastic_strain of the models that keep the accumulated equivalent plastic strain
+ * as their first history variable (von_mises, mohr_coulomb, drucker_prager, viscoplastic_dp,
+ * granular): state[0].
+ */
+double pm_plastic_strain_state0(const pm_material *m, const double *state);
+
 /* Degrees to radians. */
 static inline double pm_deg2rad(double deg) { return deg * (M_PI / 180.0); }
 

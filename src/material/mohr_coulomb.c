@@ -332,12 +332,6 @@ static int mc_update(const pm_material *m, const pm_material_step *in, double *s
     return PM_OK;
 }
 
-static double mc_eps_p(const pm_material *m, const double *state)
-{
-    (void)m;
-    return state[0];
-}
-
 const pm_material_ops pm_mohr_coulomb_ops = {
     .name = "mohr_coulomb",
     .elastic_pair = 1,
@@ -348,7 +342,7 @@ const pm_material_ops pm_mohr_coulomb_ops = {
     .init_state = NULL,
     .update = mc_update,
     .wave_speed = pm_material_elastic_wave_speed,
-    .plastic_strain = mc_eps_p,
+    .plastic_strain = pm_plastic_strain_state0,
     .strain_energy = pm_material_elastic_energy,
     .reduce_strength = pm_reduce_coulomb_strength,
 };

@@ -136,12 +136,6 @@ static int vp_update(const pm_material *m, const pm_material_step *in, double *s
     return isfinite(stress[0]) ? PM_OK : PM_ESIM;
 }
 
-static double vp_eps_p(const pm_material *m, const double *state)
-{
-    (void)m;
-    return state[0];
-}
-
 const pm_material_ops pm_viscoplastic_dp_ops = {
     .name = "viscoplastic_drucker_prager",
     .elastic_pair = 1,
@@ -152,7 +146,7 @@ const pm_material_ops pm_viscoplastic_dp_ops = {
     .init_state = NULL,
     .update = vp_update,
     .wave_speed = pm_material_elastic_wave_speed,
-    .plastic_strain = vp_eps_p,
+    .plastic_strain = pm_plastic_strain_state0,
     .strain_energy = pm_material_elastic_energy,
     .reduce_strength = NULL, /* no Coulomb strength for the search to lower */
 };

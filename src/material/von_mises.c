@@ -69,12 +69,6 @@ static int vm_update(const pm_material *m, const pm_material_step *in, double *s
     return isfinite(stress[0]) ? PM_OK : PM_ESIM;
 }
 
-static double vm_eps_p(const pm_material *m, const double *state)
-{
-    (void)m;
-    return state[0];
-}
-
 const pm_material_ops pm_von_mises_ops = {
     .name = "von_mises",
     .elastic_pair = 1,
@@ -85,7 +79,7 @@ const pm_material_ops pm_von_mises_ops = {
     .init_state = NULL,
     .update = vm_update,
     .wave_speed = pm_material_elastic_wave_speed,
-    .plastic_strain = vm_eps_p,
+    .plastic_strain = pm_plastic_strain_state0,
     .strain_energy = pm_material_elastic_energy,
     .reduce_strength = NULL, /* no Coulomb strength for the search to lower */
 };
