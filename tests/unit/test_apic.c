@@ -27,42 +27,17 @@
 #include "pmech/material.h"
 #include "pmech/sim.h"
 #include "solver/sim_internal.h"
+#include "transfer_case.h"
 
 static const double A[4] = {0.5, -3.0, 3.0, -0.2}; /* xx, xy, yx, yy: spin 3 / s plus stretch and shear */
-static const double V0[2] = {1.0, -0.5}, XC[2] = {0.5, 0.5};
+static const double V0[2] = {1.0, -0.5}, XC[2] = {0.5, 0.5}; /* XC: the disk's centre (tc_disk_case) */
 
 static void make_case(pm_case *c, pm_transfer transfer, double flip, pm_material *mat, pm_case_body *body)
 {
-    memset(c, 0, sizeof *c);
-    strcpy(c->file, "apic.json");
-    strcpy(c->shape_function, "linear");
-    c->dimension = 2;
-    c->analysis.type = PM_ANALYSIS_EXPLICIT;
-    c->analysis.scheme = PM_SCHEME_MUSL;
+    /* its edge cuts cells at every fraction */
+    tc_disk_case(c, mat, body, "apic.json", PM_SCHEME_MUSL, PM_QUAD4, 10, 1.0, 0.31);
     c->analysis.transfer = transfer;
     c->analysis.pic = 1.0 - flip;
-    c->analysis.end_time = 1;
-    c->analysis.cfl = 0.2;
-    c->grid.type = PM_GRID_RECTANGLE;
-    c->grid.size[0] = c->grid.size[1] = 1.0;
-    c->grid.cells[0] = c->grid.cells[1] = 10;
-    c->grid.element = PM_QUAD4;
-    memset(mat, 0, sizeof *mat);
-    mat->ops = pm_material_find("linear_elastic");
-    assert_non_null(mat->ops);
-    strcpy(mat->name, "m");
-    mat->density = 1000;
-    assert_int_equal(pm_material_set_elastic(mat, 1.0, 0.3, NAN, NAN), 0);
-    c->materials = mat;
-    c->n_materials = 1;
-    memset(body, 0, sizeof *body);
-    strcpy(body->name, "disk");
-    body->shape.type = PM_SHAPE_CIRCLE;
-    body->shape.center[0] = XC[0];
-    body->shape.center[1] = XC[1];
-    body->shape.radius = 0.31; /* its edge cuts cells at every fraction */
-    c->bodies = body;
-    c->n_bodies = 1;
 }
 
 static void affine(const double *x, double v[2])
@@ -135,32 +110,15 @@ static void pic_loses_it(void **st)
     assert_true(err >= 1e-2);
 }
 
-/* A small case whose analysis object ends with `extra`, on method `method`. */
+/* tc_load's case, which must load with the transfer `extra` names when the loader takes it. */
 static int load(const char *method, const char *extra)
 {
-    char buf[2048];
-    snprintf(buf, sizeof buf,
-             "{ \"dimension\": 2, \"method\": \"%s\",\n"
-             "  \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01%s },\n"
-             "  \"grid\": { \"type\": \"rectangle\", \"size\": [1, 1], \"cells\": [4, 4] },\n"
-             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,\n"
-             "                   \"youngs_modulus\": 1e6, \"poisson_ratio\": 0.3 } ],\n"
-             "  \"bodies\": [ { \"material\": \"m\",\n"
-             "                \"shape\": { \"type\": \"rectangle\", \"min\": [0, 0], \"max\": [1, 0.5] } } ] }\n",
-             method, extra);
     pm_case c;
-    const int rc = pm_case_load_buffer(buf, strlen(buf), "case.json", &c);
+    const int rc = tc_load(method, extra, &c);
     if (rc == PM_OK)
         assert_int_equal(c.analysis.transfer, strstr(extra, "apic") ? PM_TRANSFER_APIC : PM_TRANSFER_FLIP);
     pm_case_free(&c);
     return rc;
-}
-
-static void refused(const char *method, const char *extra, const char *key)
-{
-    assert_int_equal(load(method, extra), PM_EINPUT);
-    if (!strstr(pm_error_message(), key))
-        fail_msg("message \"%s\" lacks \"%s\"", pm_error_message(), key);
 }
 
 static void loader_checks(void **st)
@@ -169,10 +127,10 @@ static void loader_checks(void **st)
     assert_int_equal(load("mpm", ""), PM_OK);
     assert_int_equal(load("mpm", ", \"transfer\": \"apic\""), PM_OK);
     assert_int_equal(load("mpm", ", \"transfer\": \"apic\", \"scheme\": \"musl\", \"flip\": 1"), PM_OK);
-    refused("mpm", ", \"transfer\": \"apic\", \"scheme\": \"usl\"", "analysis.transfer");
-    refused("gmm", ", \"transfer\": \"apic\"", "analysis.transfer");
-    refused("mpm", ", \"transfer\": \"apic\", \"flip\": 0.9", "analysis.flip");
-    refused("mpm", ", \"transfer\": \"tpic\"", "analysis.transfer");
+    tc_refused("mpm", ", \"transfer\": \"apic\", \"scheme\": \"usl\"", "analysis.transfer");
+    tc_refused("gmm", ", \"transfer\": \"apic\"", "analysis.transfer");
+    tc_refused("mpm", ", \"transfer\": \"apic\", \"flip\": 0.9", "analysis.flip");
+    tc_refused("mpm", ", \"transfer\": \"tpic\"", "analysis.transfer");
 }
 
 int main(void)

@@ -14,37 +14,7 @@
 #include "pmech/material.h"
 #include "pmech/sim.h"
 #include "solver/sim_internal.h"
-
-static void make_case(pm_case *c, pm_scheme scheme, pm_element el, pm_material *mat, pm_case_body *body)
-{
-    memset(c, 0, sizeof *c);
-    strcpy(c->file, "transfer.json");
-    strcpy(c->shape_function, "linear");
-    c->dimension = 2;
-    c->analysis.type = PM_ANALYSIS_EXPLICIT;
-    c->analysis.scheme = scheme;
-    c->analysis.end_time = 1;
-    c->analysis.cfl = 0.2;
-    c->grid.type = PM_GRID_RECTANGLE;
-    c->grid.size[0] = c->grid.size[1] = 1.0;
-    c->grid.cells[0] = c->grid.cells[1] = 10;
-    c->grid.element = el;
-    memset(mat, 0, sizeof *mat);
-    mat->ops = pm_material_find("linear_elastic");
-    assert_non_null(mat->ops);
-    strcpy(mat->name, "m");
-    mat->density = 1000;
-    assert_int_equal(pm_material_set_elastic(mat, 1e6, 0.3, NAN, NAN), 0);
-    c->materials = mat;
-    c->n_materials = 1;
-    memset(body, 0, sizeof *body);
-    strcpy(body->name, "disk");
-    body->shape.type = PM_SHAPE_CIRCLE;
-    body->shape.center[0] = body->shape.center[1] = 0.5;
-    body->shape.radius = 0.25;
-    c->bodies = body;
-    c->n_bodies = 1;
-}
+#include "transfer_case.h"
 
 static void sums(const pm_sim *s, double pm[3], double gm[3])
 {
@@ -67,7 +37,7 @@ static void check(pm_scheme scheme, pm_element el)
     pm_case c;
     pm_material mat;
     pm_case_body body;
-    make_case(&c, scheme, el, &mat, &body);
+    tc_disk_case(&c, &mat, &body, "transfer.json", scheme, el, 10, 1e6, 0.25);
     pm_sim *s = NULL;
     assert_int_equal(pm_sim_create(&c, &s, 1), 0);
     /* rigid spin plus a stretching field, so that stresses and internal forces are non-zero */

@@ -35,6 +35,7 @@
 #include "pmech/material.h"
 #include "pmech/sim.h"
 #include "solver/sim_internal.h"
+#include "transfer_case.h"
 
 #define CELLS 10
 #define NODES ((CELLS + 1) * (CELLS + 1))
@@ -43,37 +44,12 @@
 static void make_case(pm_case *c, pm_transfer transfer, int order, double flip, double gravity, pm_material *mat,
                       pm_case_body *body)
 {
-    memset(c, 0, sizeof *c);
-    strcpy(c->file, "xpic.json");
-    strcpy(c->shape_function, "linear");
-    c->dimension = 2;
-    c->analysis.type = PM_ANALYSIS_EXPLICIT;
-    c->analysis.scheme = PM_SCHEME_MUSL;
+    /* its edge cuts cells at every fraction: nodes with little mass */
+    tc_disk_case(c, mat, body, "xpic.json", PM_SCHEME_MUSL, PM_QUAD4, CELLS, 1e4, 0.31);
     c->analysis.transfer = transfer;
     c->analysis.xpic_order = order;
     c->analysis.pic = 1.0 - flip;
-    c->analysis.end_time = 1;
-    c->analysis.cfl = 0.2;
     c->analysis.gravity[1] = -gravity;
-    c->grid.type = PM_GRID_RECTANGLE;
-    c->grid.size[0] = c->grid.size[1] = 1.0;
-    c->grid.cells[0] = c->grid.cells[1] = CELLS;
-    c->grid.element = PM_QUAD4;
-    memset(mat, 0, sizeof *mat);
-    mat->ops = pm_material_find("linear_elastic");
-    assert_non_null(mat->ops);
-    strcpy(mat->name, "m");
-    mat->density = 1000;
-    assert_int_equal(pm_material_set_elastic(mat, 1e4, 0.3, NAN, NAN), 0);
-    c->materials = mat;
-    c->n_materials = 1;
-    memset(body, 0, sizeof *body);
-    strcpy(body->name, "disk");
-    body->shape.type = PM_SHAPE_CIRCLE;
-    body->shape.center[0] = body->shape.center[1] = 0.5;
-    body->shape.radius = 0.31; /* its edge cuts cells at every fraction: nodes with little mass */
-    c->bodies = body;
-    c->n_bodies = 1;
 }
 
 /* A velocity field with a smooth part and a part that changes sign from particle to particle. */
@@ -247,33 +223,15 @@ static void uniform_passes(void **st)
     }
 }
 
-/* A small case whose analysis object ends with `extra`, on method `method`. */
+/* tc_load's case; the XPIC order it loads with into *order (0 for another transfer). */
 static int load(const char *method, const char *extra, int *order)
 {
-    char buf[2048];
-    snprintf(buf, sizeof buf,
-             "{ \"dimension\": 2, \"method\": \"%s\",\n"
-             "  \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01%s },\n"
-             "  \"grid\": { \"type\": \"rectangle\", \"size\": [1, 1], \"cells\": [4, 4] },\n"
-             "  \"materials\": [ { \"name\": \"m\", \"model\": \"linear_elastic\", \"density\": 1000,\n"
-             "                   \"youngs_modulus\": 1e6, \"poisson_ratio\": 0.3 } ],\n"
-             "  \"bodies\": [ { \"material\": \"m\",\n"
-             "                \"shape\": { \"type\": \"rectangle\", \"min\": [0, 0], \"max\": [1, 0.5] } } ] }\n",
-             method, extra);
     pm_case c;
-    const int rc = pm_case_load_buffer(buf, strlen(buf), "case.json", &c);
+    const int rc = tc_load(method, extra, &c);
     if (rc == PM_OK)
         *order = c.analysis.transfer == PM_TRANSFER_XPIC ? c.analysis.xpic_order : 0;
     pm_case_free(&c);
     return rc;
-}
-
-static void refused(const char *method, const char *extra, const char *key)
-{
-    int order;
-    assert_int_equal(load(method, extra, &order), PM_EINPUT);
-    if (!strstr(pm_error_message(), key))
-        fail_msg("message \"%s\" lacks \"%s\"", pm_error_message(), key);
 }
 
 static void loader_checks(void **st)
@@ -286,14 +244,14 @@ static void loader_checks(void **st)
     assert_int_equal(order, 1);
     assert_int_equal(load("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 20, \"flip\": 1", &order), PM_OK);
     assert_int_equal(order, 20);
-    refused("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 0", "analysis.xpic_order: got 0; allowed: a whole "
+    tc_refused("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 0", "analysis.xpic_order: got 0; allowed: a whole "
                                                                    "number from 1 to 20");
-    refused("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 21", "analysis.xpic_order");
-    refused("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 2.5", "analysis.xpic_order");
-    refused("mpm", ", \"xpic_order\": 3", "analysis.xpic_order");
-    refused("mpm", ", \"transfer\": \"xpic\", \"scheme\": \"usl\"", "analysis.transfer");
-    refused("gmm", ", \"transfer\": \"xpic\"", "analysis.transfer");
-    refused("mpm", ", \"transfer\": \"xpic\", \"flip\": 0.9", "analysis.flip");
+    tc_refused("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 21", "analysis.xpic_order");
+    tc_refused("mpm", ", \"transfer\": \"xpic\", \"xpic_order\": 2.5", "analysis.xpic_order");
+    tc_refused("mpm", ", \"xpic_order\": 3", "analysis.xpic_order");
+    tc_refused("mpm", ", \"transfer\": \"xpic\", \"scheme\": \"usl\"", "analysis.transfer");
+    tc_refused("gmm", ", \"transfer\": \"xpic\"", "analysis.transfer");
+    tc_refused("mpm", ", \"transfer\": \"xpic\", \"flip\": 0.9", "analysis.flip");
 }
 
 int main(void)
