@@ -19,8 +19,21 @@
 
 #include "shape/cloud.h"
 #include "pmech/error.h"
+#include "pmech/particles.h"
 
 static double rnd(unsigned *seed) { return (double)rand_r(seed) / RAND_MAX; }
+
+/* @p n points uniformly random in the box [lo, lo + size], each point's x drawn before its y; the caller
+ * frees them. */
+static double *random_points(size_t n, const double lo[PM_DIM], const double size[PM_DIM], unsigned *seed)
+{
+    double *x = malloc(PM_DIM * n * sizeof *x);
+    assert_non_null(x);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < PM_DIM; d++)
+            x[PM_DIM * i + d] = lo[d] + size[d] * rnd(seed);
+    return x;
+}
 
 static int cmp_i32(const void *a, const void *b)
 {
@@ -83,13 +96,8 @@ static void matches_brute_force(void **state)
     (void)state;
     unsigned seed = 11;
     const size_t n = 3000;
-    double *x = malloc(2 * n * sizeof *x);
-    assert_non_null(x);
-    /* uniform in a 3 x 2 box */
-    for (size_t i = 0; i < n; i++) {
-        x[2 * i] = -1 + 3 * rnd(&seed);
-        x[2 * i + 1] = 5 + 2 * rnd(&seed);
-    }
+    const double lo[PM_DIM] = {-1, 5}, size[PM_DIM] = {3, 2}; /* uniform in a 3 x 2 box */
+    double *x = random_points(n, lo, size, &seed);
     pm_cloud *c;
     assert_int_equal(pm_cloud_create(n, x, NULL, NULL, &c), PM_OK);
     printf("uniform: h %.4f, cell %.4f, %d x %d cells\n", c->h, c->cell, c->nc[0], c->nc[1]);
@@ -126,14 +134,11 @@ static void skin_rule(void **state)
     (void)state;
     unsigned seed = 17;
     const size_t n = 1500;
-    double *x = malloc(2 * n * sizeof *x), *vol = malloc(n * sizeof *vol);
-    assert_non_null(x);
+    const double lo[PM_DIM] = {0, 0}, size[PM_DIM] = {2, 1};
+    double *x = random_points(n, lo, size, &seed), *vol = malloc(n * sizeof *vol);
     assert_non_null(vol);
-    for (size_t i = 0; i < n; i++) {
-        x[2 * i] = 2 * rnd(&seed);
-        x[2 * i + 1] = rnd(&seed);
+    for (size_t i = 0; i < n; i++)
         vol[i] = 2.0 / n;
-    }
     pm_cloud *c;
     assert_int_equal(pm_cloud_create(n, x, vol, NULL, &c), PM_OK);
     /* h from the volumes: sqrt(2 / n) */
@@ -177,12 +182,8 @@ static void adaptive_radius(void **state)
     (void)state;
     unsigned seed = 29;
     const size_t n = 800;
-    double *x = malloc(2 * n * sizeof *x);
-    assert_non_null(x);
-    for (size_t i = 0; i < n; i++) {
-        x[2 * i] = rnd(&seed);
-        x[2 * i + 1] = rnd(&seed);
-    }
+    const double lo[PM_DIM] = {0, 0}, size[PM_DIM] = {1, 1};
+    double *x = random_points(n, lo, size, &seed);
     pm_cloud *c;
     assert_int_equal(pm_cloud_create(n, x, NULL, NULL, &c), PM_OK);
     int32_t idx[64], ref[800];
@@ -233,12 +234,8 @@ static void restore_gives_the_same_cell_list(void **state)
     (void)state;
     unsigned seed = 31;
     const size_t n = 1200;
-    double *x0 = malloc(2 * n * sizeof *x0);
-    assert_non_null(x0);
-    for (size_t i = 0; i < n; i++) {
-        x0[2 * i] = 2 * rnd(&seed);
-        x0[2 * i + 1] = rnd(&seed);
-    }
+    const double lo[PM_DIM] = {0, 0}, size[PM_DIM] = {2, 1};
+    double *x0 = random_points(n, lo, size, &seed);
     pm_cloud *a, *b;
     assert_int_equal(pm_cloud_create(n, x0, NULL, NULL, &a), PM_OK);
     const double cell0 = a->cell;

@@ -72,6 +72,34 @@ static int read_mesh(pm_grid *g, const char *curve, size_t nn, const double *xy,
     return rc;
 }
 
+/* The mesh of write_mesh read, its curve group found with @p n_edges edges and made a wall of friction
+ * @p mu: the contact, the group in *set. */
+static pm_contact *edge_wall(pm_grid *g, const char *curve, size_t nn, const double *xy, size_t nl, const int *lines,
+                             size_t nt, const int *tris, size_t n_edges, double mu, const pm_node_set **set)
+{
+    assert_int_equal(read_mesh(g, curve, nn, xy, nl, lines, nt, tris), 0);
+    *set = pm_grid_find_set(g, curve);
+    assert_non_null(*set);
+    assert_int_equal((*set)->n_edges, n_edges);
+    pm_contact *ct;
+    assert_int_equal(pm_contact_new(g->n_nodes, &ct), 0);
+    assert_int_equal(pm_contact_add_edge_set(ct, g, *set, mu, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    return ct;
+}
+
+/* A simulation of case @p text (read as if from file @p name) into *s, which must load and set up. */
+static pm_sim *sim_of(const char *text, const char *name, pm_case *c)
+{
+    int rc = pm_case_load_buffer(text, strlen(text), name, c);
+    pm_sim *s = NULL;
+    if (!rc)
+        rc = pm_sim_create(c, &s, 1);
+    if (rc)
+        fprintf(stderr, "%s\n", pm_error_message());
+    assert_int_equal(rc, 0);
+    return s;
+}
+
 enum { NRIM = 48 };
 
 static void circle_rim(void **state)
@@ -92,11 +120,9 @@ static void circle_rim(void **state)
         tris[3 * i] = 1, tris[3 * i + 1] = p, tris[3 * i + 2] = q;
     }
     pm_grid g;
-    assert_int_equal(read_mesh(&g, "rim", NRIM + 1, xy, NRIM, lines, NRIM, tris), 0);
-    const pm_node_set *rim = pm_grid_find_set(&g, "rim");
-    assert_non_null(rim);
+    const pm_node_set *rim;
+    pm_contact *ct = edge_wall(&g, "rim", NRIM + 1, xy, NRIM, lines, NRIM, tris, NRIM, 0.3, &rim);
     assert_int_equal(rim->n, NRIM);
-    assert_int_equal(rim->n_edges, NRIM);
     for (size_t q = 0; q < rim->n_edges; q++) {
         const double *a = g.x + 2 * rim->edges[2 * q], *b = g.x + 2 * rim->edges[2 * q + 1];
         /* the centre (the owning triangle) on the left */
@@ -104,10 +130,6 @@ static void circle_rim(void **state)
         /* one closed chain */
         assert_int_equal(rim->edges[2 * q + 1], rim->edges[2 * ((q + 1) % NRIM)]);
     }
-    pm_contact *ct;
-    assert_int_equal(pm_contact_new(g.n_nodes, &ct), 0);
-    const int k = pm_contact_add_edge_set(ct, &g, rim, 0.3, PM_CONTACT_LAW_NODAL_COULOMB, 0);
-    assert_int_equal(k, 0);
     assert_int_equal(ct->n_node, NRIM);
     double worst = 0;
     for (size_t e = 0; e < ct->n_node; e++) {
@@ -160,13 +182,8 @@ static void l_shape(void **state)
     /* the whole outline, in no particular order or direction */
     const int lines[] = {2, 1, 3, 2, 3, 6, 5, 6, 8, 5, 7, 8, 4, 7, 1, 4};
     pm_grid g;
-    assert_int_equal(read_mesh(&g, "outline", 8, xy, 8, lines, 6, tris), 0);
-    const pm_node_set *set = pm_grid_find_set(&g, "outline");
-    assert_non_null(set);
-    assert_int_equal(set->n_edges, 8);
-    pm_contact *ct;
-    assert_int_equal(pm_contact_new(g.n_nodes, &ct), 0);
-    assert_int_equal(pm_contact_add_edge_set(ct, &g, set, 0.0, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    const pm_node_set *set;
+    pm_contact *ct = edge_wall(&g, "outline", 8, xy, 8, lines, 6, tris, 8, 0.0, &set);
     /* 8 nodes, 5 of them inward corners with two entries */
     assert_int_equal(ct->n_node, 13);
     double n[2][2];
@@ -233,13 +250,8 @@ static void tool_tip_two_nodes(void **state)
     /* the tool's faces: the rake face up from the upper tip node, the clearance face right of the lower */
     const int lines[] = {upper_tip, tag[2][3], tag[2][3], tag[2][4], tag[2][2], tag[3][2], tag[3][2], tag[4][2]};
     pm_grid g;
-    assert_int_equal(read_mesh(&g, "tool", (size_t)n, xy, 4, lines, (size_t)nt, tris), 0);
-    const pm_node_set *set = pm_grid_find_set(&g, "tool");
-    assert_non_null(set);
-    assert_int_equal(set->n_edges, 4);
-    pm_contact *ct;
-    assert_int_equal(pm_contact_new(g.n_nodes, &ct), 0);
-    assert_int_equal(pm_contact_add_edge_set(ct, &g, set, 0.1, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
+    const pm_node_set *set;
+    pm_contact *ct = edge_wall(&g, "tool", (size_t)n, xy, 4, lines, (size_t)nt, tris, 4, 0.1, &set);
     assert_int_equal(ct->n_node, 6);
     double nn[2][2];
     int corner = 1;
@@ -306,13 +318,7 @@ static void tip_normal_from_material(const double body_min[2], const double body
              "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"outline\", \"coefficient\": 0.2 } ] }",
              path, body_min[0], body_min[1], body_max[0], body_max[1]);
     pm_case c;
-    int rc = pm_case_load_buffer(text, strlen(text), "/tmp/l_case.json", &c);
-    pm_sim *s = NULL;
-    if (!rc)
-        rc = pm_sim_create(&c, &s, 1);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
+    pm_sim *s = sim_of(text, "/tmp/l_case.json", &c);
     const pm_contact *ct = s->contact;
     size_t tip = ct->n_node;
     for (size_t e = 0; e < ct->n_node; e++)
@@ -381,6 +387,17 @@ static int incline_case(const char *group, const char *coefficient, pm_case *c, 
     return incline_case_of("mpm", 0, group, coefficient, c, s);
 }
 
+/* The simulation of incline_case_of, which must load and set up. */
+static pm_sim *incline_sim(const char *method, int on_slope, const char *group, const char *coefficient, pm_case *c)
+{
+    pm_sim *s;
+    const int rc = incline_case_of(method, on_slope, group, coefficient, c, &s);
+    if (rc)
+        fprintf(stderr, "%s\n", pm_error_message());
+    assert_int_equal(rc, 0);
+    return s;
+}
+
 /* GMM and RKPM: the slope is a wall of the mesh's edges whose nodes every detection finds (the cloud's
  * nodes within reach of it), each with the slope's normal; a 2-D group is no wall. */
 static void incline_meshfree_walls(void **state)
@@ -390,11 +407,7 @@ static void incline_meshfree_walls(void **state)
     const double th = 25 * M_PI / 180;
     for (int m = 0; m < 2; m++) {
         pm_case c;
-        pm_sim *s;
-        int rc = incline_case_of(methods[m], 1, "slope", "0.3", &c, &s);
-        if (rc)
-            fprintf(stderr, "%s\n", pm_error_message());
-        assert_int_equal(rc, 0);
+        pm_sim *s = incline_sim(methods[m], 1, "slope", "0.3", &c);
         const pm_contact *ct = s->contact;
         assert_int_equal(ct->n_surfaces, 1);
         assert_int_equal(ct->surface[0].kind, PM_CONTACT_EDGES);
@@ -427,11 +440,7 @@ static void incline_walls_and_bad_names(void **state)
 {
     (void)state;
     pm_case c;
-    pm_sim *s;
-    int rc = incline_case("slope", "\"no_slip\"", &c, &s);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
+    pm_sim *s = incline_sim("mpm", 0, "slope", "\"no_slip\"", &c);
     const pm_contact *ct = s->contact;
     assert_int_equal(ct->n_surfaces, 1);
     assert_int_equal(ct->surface[0].kind, PM_CONTACT_EDGES);
@@ -515,13 +524,7 @@ static void corner_faces_keep_own_forces(void **state)
              "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"walls\", \"coefficient\": 0 } ] }",
              -G * sin(th), -G * cos(th), path, rho);
     pm_case c;
-    int rc = pm_case_load_buffer(text, strlen(text), "/tmp/corner_case.json", &c);
-    pm_sim *s = NULL;
-    if (!rc)
-        rc = pm_sim_create(&c, &s, 1);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
+    pm_sim *s = sim_of(text, "/tmp/corner_case.json", &c);
     const pm_contact *ct = s->contact;
     assert_int_equal(ct->n_own_rows, 1); /* one inward corner */
     double *x1 = malloc(2 * s->p.n * sizeof *x1);
