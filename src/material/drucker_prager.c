@@ -22,11 +22,7 @@ enum { P_C, P_PHI, P_PSI, P_A, P_KH, P_HH };
 enum { D_ALPHA, D_BETA, D_B };
 
 static const pm_param_spec dp_params[] = {
-    {"cohesion", NAN, PM_PARAM_REQUIRED, 0.0, INFINITY, "cohesion c (Pa)"},
-    {"friction_angle", NAN, PM_PARAM_REQUIRED | PM_PARAM_HI_OPEN | PM_PARAM_ANGLE, 0.0, 90.0,
-     "friction angle phi (degrees)"},
-    {"dilatancy_angle", 0.0, PM_PARAM_HI_OPEN | PM_PARAM_ANGLE, 0.0, 90.0,
-     "dilatancy angle psi (degrees, <= friction_angle)"},
+    PM_COULOMB_PARAM_SPECS,
     {"cone_fit", -1.0, 0, -1.0, 1.0,
      "A of seed 002 eq. 35: -1 cone through the outer (compression) apexes, +1 inner"},
     {"bulk_hardening", 0.0, 0, -INFINITY, INFINITY,
@@ -39,13 +35,7 @@ static int dp_init(pm_material *m)
 {
     const double phi = m->param[P_PHI], psi = m->param[P_PSI], A = m->param[P_A];
     const double c = m->param[P_C];
-    if (!(c >= 0))
-        return pm_error_set(PM_EINPUT, "cohesion = %g: must be >= 0", c);
-    if (!(phi >= 0 && phi < 90))
-        return pm_error_set(PM_EINPUT, "friction_angle = %g: must be in [0, 90)", phi);
-    if (!(psi >= 0 && psi <= phi))
-        return pm_error_set(PM_EINPUT,
-                            "dilatancy_angle = %g: must be in [0, friction_angle = %g]", psi, phi);
+    pm_check(pm_check_coulomb_strength(c, phi, psi));
     if (!(A >= -1 && A <= 1))
         return pm_error_set(PM_EINPUT, "cone_fit = %g: must be in [-1, 1]", A);
     const double sp = sin(pm_deg2rad(phi)), cp = cos(pm_deg2rad(phi)), ss = sin(pm_deg2rad(psi));

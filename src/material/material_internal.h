@@ -19,6 +19,24 @@ extern const pm_material_ops pm_viscoplastic_dp_ops;
 extern const pm_material_ops pm_granular_ops;
 
 /*
+ * The Coulomb strength parameters of mohr_coulomb and drucker_prager, the first three entries of their
+ * parameter tables (in this order: cohesion, friction_angle, dilatancy_angle), so that both models
+ * take the same keys with the same ranges, the keys pm_reduce_coulomb_strength divides.
+ */
+#define PM_COULOMB_PARAM_SPECS                                                                  \
+    {"cohesion", NAN, PM_PARAM_REQUIRED, 0.0, INFINITY, "cohesion c (Pa)"},                     \
+    {"friction_angle", NAN, PM_PARAM_REQUIRED | PM_PARAM_HI_OPEN | PM_PARAM_ANGLE, 0.0, 90.0,   \
+     "friction angle phi (degrees)"},                                                           \
+    {"dilatancy_angle", 0.0, PM_PARAM_HI_OPEN | PM_PARAM_ANGLE, 0.0, 90.0,                      \
+     "dilatancy angle psi (degrees, <= friction_angle)"}
+
+/*
+ * Checks of the Coulomb strength parameters (PM_COULOMB_PARAM_SPECS) the ranges of the table do not
+ * say: c >= 0, 0 <= phi < 90 and 0 <= psi <= phi degrees. PM_OK, or PM_EINPUT naming the key.
+ */
+int pm_check_coulomb_strength(double c, double phi, double psi);
+
+/*
  * pm_material_ops::reduce_strength of the Coulomb-type models (mohr_coulomb, drucker_prager):
  * c -> c / F, phi -> atan(tan(phi) / F), psi -> atan(tan(psi) / F) capped at the reduced phi,
  * a tension_cutoff T (where the model has one and it is set) -> T / F.

@@ -39,11 +39,7 @@ enum { P_C, P_PHI, P_PSI, P_T, P_LOOSE };
 enum { D_K, D_M, D_SC, D_T, D_APEX, D_CUT };
 
 static const pm_param_spec mc_params[] = {
-    {"cohesion", NAN, PM_PARAM_REQUIRED, 0.0, INFINITY, "cohesion c (Pa)"},
-    {"friction_angle", NAN, PM_PARAM_REQUIRED | PM_PARAM_HI_OPEN | PM_PARAM_ANGLE, 0.0, 90.0,
-     "friction angle phi (degrees)"},
-    {"dilatancy_angle", 0.0, PM_PARAM_HI_OPEN | PM_PARAM_ANGLE, 0.0, 90.0,
-     "dilatancy angle psi (degrees, <= friction_angle)"},
+    PM_COULOMB_PARAM_SPECS,
     {"tension_cutoff", NAN, 0, 0.0, INFINITY,
      "largest principal (tensile) stress T (Pa); absent: the apex c cot(phi), i.e. no cut-off"},
     {"stress_free_dilation", 0.0, 0, 0.0, 1.0,
@@ -54,13 +50,7 @@ static int mc_init(pm_material *m)
 {
     const double c = m->param[P_C], phi = m->param[P_PHI], psi = m->param[P_PSI];
     const double T = m->param[P_T];
-    if (!(c >= 0))
-        return pm_error_set(PM_EINPUT, "cohesion = %g: must be >= 0", c);
-    if (!(phi >= 0 && phi < 90))
-        return pm_error_set(PM_EINPUT, "friction_angle = %g: must be in [0, 90)", phi);
-    if (!(psi >= 0 && psi <= phi))
-        return pm_error_set(PM_EINPUT,
-                            "dilatancy_angle = %g: must be in [0, friction_angle = %g]", psi, phi);
+    pm_check(pm_check_coulomb_strength(c, phi, psi));
     if (!isnan(T) && !(T >= 0))
         return pm_error_set(PM_EINPUT, "tension_cutoff = %g: must be >= 0", T);
     const double loose = m->param[P_LOOSE];

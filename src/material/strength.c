@@ -1,11 +1,23 @@
 /*
- * The strength that strength reduction divides (Griffiths & Lane 1999), for the models whose
- * strength is Coulomb friction and cohesion. Friction is reduced through its tangent, the
- * coefficient that multiplies the normal stress, so that c and tan(phi) fall by the same factor.
+ * The Coulomb strength, friction and cohesion, of the models that have one: the checks of its
+ * parameters, and what strength reduction divides (Griffiths & Lane 1999). Friction is reduced
+ * through its tangent, the coefficient that multiplies the normal stress, so that c and tan(phi)
+ * fall by the same factor.
  */
 #include "material/material_internal.h"
 
 #include "pmech/error.h"
+
+int pm_check_coulomb_strength(double c, double phi, double psi)
+{
+    if (!(c >= 0))
+        return pm_error_set(PM_EINPUT, "cohesion = %g: must be >= 0", c);
+    if (!(phi >= 0 && phi < 90))
+        return pm_error_set(PM_EINPUT, "friction_angle = %g: must be in [0, 90)", phi);
+    if (!(psi >= 0 && psi <= phi))
+        return pm_error_set(PM_EINPUT, "dilatancy_angle = %g: must be in [0, friction_angle = %g]", psi, phi);
+    return PM_OK;
+}
 
 static double reduce_angle(double deg, double factor)
 {
