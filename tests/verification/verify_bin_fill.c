@@ -28,28 +28,11 @@
  */
 #include "verify_util.h"
 
-#include "pmech/error.h"
 #include "solver/flow.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-static int run(pm_sim *s, double end, int (*each)(pm_sim *, void *), void *ctx)
-{
-    while (s->t < end - 1e-12) {
-        double dt = vu_dt(s);
-        if (s->t + dt > end)
-            dt = end - s->t;
-        if (pm_explicit_step(s, dt) != PM_OK) {
-            fprintf(stderr, "step failed: %s\n", pm_error_message());
-            return 0;
-        }
-        if (each && !each(s, ctx))
-            return 0;
-    }
-    return 1;
-}
 
 /* The top of the highest particle's domain: its centre plus its initial half-size stretched by F_yy. */
 static double fill_top(const pm_particles *p)
@@ -66,9 +49,9 @@ static int check_fill(void)
     vu_load("tests/verification/cases/bin_fill.json", &c);
     const double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);
-    int ok = run(s, c.analysis.end_time - 0.2, NULL, NULL);
+    int ok = vu_run_each(s, c.analysis.end_time - 0.2, NULL, NULL);
     const double top_before = fill_top(&s->p);
-    ok &= run(s, c.analysis.end_time, NULL, NULL);
+    ok &= vu_run_each(s, c.analysis.end_time, NULL, NULL);
     const double secs = vu_now() - t0;
     const pm_particles *p = &s->p;
     const pm_material *m = &c.materials[0];
@@ -146,7 +129,7 @@ static int check_mass_balance(void)
         return 0;
     }
     check_balance(s, &b);
-    int ok = run(s, c.analysis.end_time, check_balance, &b);
+    int ok = vu_run_each(s, c.analysis.end_time, check_balance, &b);
     const double secs = vu_now() - t0;
     pm_flow_totals ft;
     pm_flow_totals_of(s, &ft);

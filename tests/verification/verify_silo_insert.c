@@ -91,28 +91,10 @@ static int check_class(const pm_sim *s, const snapshot *a, double z, int judged,
         drop[k] = a->z[k]; /* removed unless found below */
     for (size_t i = 0; i < p->n; i++)
         drop[p->id[i]] = a->z[p->id[i]] - p->x[PM_DIM * i + 1];
-    double da = 0, dw = 0, all = 0;
-    int na = 0, nw = 0;
-    for (int32_t k = 0; k < a->n; k++) {
-        if (!(fabs(a->z[k] - z) < H_CELL))
-            continue;
-        all += a->vol[k];
-        if (a->r[k] < 0.1) {
-            da += drop[k];
-            na++;
-        } else if (a->r[k] > R_SILO - 0.1) {
-            dw += drop[k];
-            nw++;
-        }
-    }
-    da = na ? da / na : 0;
-    dw = nw ? dw / nw : 0;
-    double moving = 0;
-    for (int32_t k = 0; k < a->n; k++)
-        if (fabs(a->z[k] - z) < H_CELL && drop[k] > 0.1 * da)
-            moving += a->vol[k];
+    const vu_band b = vu_silo_band((size_t)a->n, a->r, a->z, 1, a->vol, drop, z, H_CELL, R_SILO);
     free(drop);
-    const double ratio = da > 0 ? dw / da : 0, share = all > 0 ? moving / all : 0;
+    const double da = b.axis;
+    const double ratio = da > 0 ? b.wall / da : 0, share = b.all > 0 ? b.moving / b.all : 0;
     char q[128];
     snprintf(q, sizeof q, "mass flow: wall / axis drop over 0.25-0.8 s at z = %.1f m (> 0.5)", z);
     int ok = vu_report(bench, q, ratio, 1, ratio - 1, judged ? 0.5 : -1, secs);

@@ -59,14 +59,20 @@ double vu_dt(const pm_sim *s)
     return s->c->analysis.cfl * s->grid.h_min / s->max_wave;
 }
 
+/* One explicit step of vu_dt towards @p end, clipped to it; the step's status. */
+static int step_towards(pm_sim *s, double end)
+{
+    double dt = vu_dt(s);
+    if (s->t + dt > end)
+        dt = end - s->t;
+    return pm_explicit_step(s, dt);
+}
+
 int vu_advance(pm_sim *s, double end)
 {
     if (!(s->t < end - 1e-12))
         return 0;
-    double dt = vu_dt(s);
-    if (s->t + dt > end)
-        dt = end - s->t;
-    if (pm_explicit_step(s, dt) != 0) {
+    if (step_towards(s, end) != PM_OK) {
         fprintf(stderr, "%s\n", pm_error_message());
         exit(1);
     }
@@ -82,14 +88,24 @@ void vu_run_to(pm_sim *s, double end)
 int vu_steps_until(pm_sim *s, double end, double mark)
 {
     while (s->t < end - 1e-12 && s->t < mark) {
-        double dt = vu_dt(s);
-        if (s->t + dt > end)
-            dt = end - s->t;
-        const int rc = pm_explicit_step(s, dt);
+        const int rc = step_towards(s, end);
         if (rc != PM_OK)
             return rc;
     }
     return PM_OK;
+}
+
+int vu_run_each(pm_sim *s, double end, int (*each)(pm_sim *s, void *ctx), void *ctx)
+{
+    while (s->t < end - 1e-12) {
+        if (step_towards(s, end) != PM_OK) {
+            fprintf(stderr, "step failed: %s\n", pm_error_message());
+            return 0;
+        }
+        if (each && !each(s, ctx))
+            return 0;
+    }
+    return 1;
 }
 
 void vu_slope_block(double theta_deg, double y0, double s0, double width, double height, double q[4][PM_DIM])
@@ -355,4 +371,29 @@ double vu_deposit_front(const pm_sim *s, double gap, double *xmax)
     *xmax = xs[n - 1];
     free(xs);
     return front;
+}
+
+vu_band vu_silo_band(size_t n, const double *r, const double *height, size_t stride, const double *vol,
+                     const double *down, double z, double half, double r_wall)
+{
+    vu_band b = {0, 0, 0, 0};
+    int na = 0, nw = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!(fabs(height[stride * i] - z) < half))
+            continue;
+        b.all += vol[i];
+        if (r[stride * i] < 0.1) {
+            b.axis += down[i];
+            na++;
+        } else if (r[stride * i] > r_wall - 0.1) {
+            b.wall += down[i];
+            nw++;
+        }
+    }
+    b.axis = na ? b.axis / na : 0;
+    b.wall = nw ? b.wall / nw : 0;
+    for (size_t i = 0; i < n; i++)
+        if (fabs(height[stride * i] - z) < half && down[i] > 0.1 * b.axis)
+            b.moving += vol[i];
+    return b;
 }

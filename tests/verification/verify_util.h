@@ -49,6 +49,14 @@ void vu_run_to(pm_sim *s, double end);
 int vu_steps_until(pm_sim *s, double end, double mark);
 
 /**
+ * Explicit steps to @p end (vu_dt, the last one clipped to it), with @p each (unless NULL) called with
+ * @p ctx after every step. Returns 1 once @p end is reached; 0 as soon as a step fails (after printing
+ * "step failed: <error>" on stderr, without exiting, so that the test can still report the run) or
+ * @p each returns 0.
+ */
+int vu_run_each(pm_sim *s, double end, int (*each)(pm_sim *s, void *ctx), void *ctx);
+
+/**
  * The corners of a @p width x @p height block resting on a slope that runs down to the right from
  * (0, @p y0) at @p theta_deg degrees: its bottom lies on the slope from @p s0 to s0 + width along it.
  * Counter-clockwise from the bottom's upper end.
@@ -151,5 +159,23 @@ void vu_plot_history(const char *png, const char *title, const char *ylabel, con
  * Returns NAN when out of memory.
  */
 double vu_deposit_front(const pm_sim *s, double gap, double *xmax);
+
+/** How the fill of an axisymmetric silo moves down at one height (vu_silo_band). */
+typedef struct vu_band {
+    double axis;   /**< mean downward motion of the points on the axis, r < 0.1 m (0 if none) */
+    double wall;   /**< that of the points next to the wall, r > r_wall - 0.1 m (0 if none) */
+    double all;    /**< summed volume of the points in the band */
+    double moving; /**< that of the points moving down by more than a tenth of the axis's mean */
+} vu_band;
+
+/**
+ * The points of a silo of radius @p r_wall within @p half of height @p z (|height - z| < half; a NaN
+ * height, a point not there, is outside): point i at radius r[stride * i] and height
+ * height[stride * i], of volume vol[i], moving down by down[i] (a speed, or a drop over a time).
+ * The means and sums of vu_band, each summed in the order of the points; the funnel and mass flow
+ * classes of the silo tests are made from them.
+ */
+vu_band vu_silo_band(size_t n, const double *r, const double *height, size_t stride, const double *vol,
+                     const double *down, double z, double half, double r_wall);
 
 #endif
