@@ -87,7 +87,7 @@ static pm_contact *edge_wall(pm_grid *g, const char *curve, size_t nn, const dou
     return ct;
 }
 
-/* A simulation of case @p text (read as if from file @p name) into *s, which must load and set up. */
+/* The simulation of case @p text (loaded into @p c as if read from file @p name), which must load and set up. */
 static pm_sim *sim_of(const char *text, const char *name, pm_case *c)
 {
     int rc = pm_case_load_buffer(text, strlen(text), name, c);
