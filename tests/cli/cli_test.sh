@@ -5,18 +5,7 @@
 # usage: cli_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
-rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
-fail=0
-check() { # description, condition...
-  d=$1; shift
-  if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi
-}
-expect_exit() { # code, description, command...
-  code=$1; d=$2; shift 2
-  "$@" >out.txt 2>err.txt; rc=$?
-  if [ "$rc" -eq "$code" ]; then echo "ok   $d (exit $rc)"; else echo "FAIL $d: exit $rc, wanted $code"; cat err.txt; fail=1; fi
-}
-has() { grep -q -- "$1" "$2"; }
+. "$SRC/tests/cli/test_lib.sh"
 
 expect_exit 0 "--version" "$PMECH" --version
 check "version printed" has "pmech " out.txt
@@ -117,5 +106,4 @@ import csv, sys
 rows = list(csv.DictReader(open('pair.out/contact_forces.csv')))
 sys.exit(0 if rows[0]['first'] == 'lower' and min(float(r['fx']) + float(r['fy']) for r in rows) < 0 else 1)"
 
-if [ $fail -eq 0 ]; then echo "all CLI checks passed"; fi
-exit $fail
+finish "all CLI checks passed"

@@ -5,22 +5,16 @@
 # usage: refusals_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
-rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
-fail=0
+. "$SRC/tests/cli/test_lib.sh"
 DISKS="$SRC/examples/elastic_disks/case.json"
-check() { # description, condition...
-  d=$1; shift
-  if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi
-}
-# code, description, command...: the exit code, within 20 s and 1 GB of address space (the address
-# space is not bounded in sanitizer builds, PMECH_NO_VMEM_LIMIT: ASan reserves terabytes of it for its
-# shadow memory at start; the release build checks the bound)
+# test_lib.sh's expect_exit with the command bounded: the exit code, within 20 s and 1 GB of address
+# space (the address space is not bounded in sanitizer builds, PMECH_NO_VMEM_LIMIT: ASan reserves
+# terabytes of it for its shadow memory at start; the release build checks the bound)
 expect_exit() {
   code=$1; d=$2; shift 2
   ( [ -n "${PMECH_NO_VMEM_LIMIT:-}" ] || ulimit -v 1000000; timeout 20 "$@" ) >out.txt 2>err.txt; rc=$?
   if [ "$rc" -eq "$code" ]; then echo "ok   $d (exit $rc)"; else echo "FAIL $d: exit $rc, wanted $code"; cat err.txt; fail=1; fi
 }
-has() { grep -q -- "$1" "$2"; }
 
 # ---- bounded work
 sed 's/"end_time": 3.5/"end_time": 1e300/' "$DISKS" > long.json
@@ -102,5 +96,4 @@ ok = ok and all(abs(float(r['disk.vx']) - 0.1) <= 1e-10 and abs(float(r['disk.vy
 ok = ok and abs(float(last['pos.x']) - 0.35) <= 1e-9 * 0.35 and abs(float(last['pos.y']) - 0.5) <= 1e-9
 sys.exit(0 if ok else 1)"
 
-if [ $fail -eq 0 ]; then echo "all refusal checks passed"; fi
-exit $fail
+finish "all refusal checks passed"

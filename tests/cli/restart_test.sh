@@ -12,10 +12,8 @@
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
-rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
+. "$SRC/tests/cli/test_lib.sh"
 export OMP_WAIT_POLICY=passive
-fail=0
-check() { d=$1; shift; if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi; }
 # every file of the uninterrupted run but run.json (wall times), checkpoint.h5 and the lock, byte for byte
 same_outputs() {
   a=$1; b=$2; bad=0
@@ -171,5 +169,4 @@ expect_refusal "a strength reduction" "a strength reduction is a search of many 
 expect_refusal "--restart with -o elsewhere" "cannot name another directory" \
   "$PMECH" run musl_mc.json --restart musl_mc.part -o other.out --quiet
 
-if [ $fail -eq 0 ]; then echo "all checkpoint and restart checks passed"; fi
-exit $fail
+finish "all checkpoint and restart checks passed"

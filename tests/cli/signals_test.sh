@@ -6,15 +6,7 @@
 # usage: signals_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
-rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
-fail=0
-check() { d=$1; shift; if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi; }
-expect_exit() {
-  code=$1; d=$2; shift 2
-  "$@" >out.txt 2>err.txt; rc=$?
-  if [ "$rc" -eq "$code" ]; then echo "ok   $d (exit $rc)"; else echo "FAIL $d: exit $rc, wanted $code"; cat err.txt; fail=1; fi
-}
-has() { grep -q -- "$1" "$2"; }
+. "$SRC/tests/cli/test_lib.sh"
 # a run of about 10 s on one core: long enough to be interrupted after its first frames
 sed 's/"end_time": 3.5/"end_time": 30/; s/"interval": 0.05/"interval": 0.2/; s/, "pictures": "speed"//' \
   "$SRC/examples/elastic_disks/case.json" > long.json
@@ -93,5 +85,4 @@ files = [d.get('file') for d in pvd.iter('DataSet')]
 whole = all(open(os.path.join('second.out', f), 'rb').read().rstrip().endswith(b'</VTKFile>') for f in files)
 sys.exit(0 if whole and files else 1)"
 
-if [ $fail -eq 0 ]; then echo "all output-directory and signal checks passed"; fi
-exit $fail
+finish "all output-directory and signal checks passed"

@@ -4,15 +4,7 @@
 # usage: material_cli_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
-rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
-fail=0
-check() { d=$1; shift; if "$@"; then echo "ok   $d"; else echo "FAIL $d"; fail=1; fi; }
-expect_exit() {
-  code=$1; d=$2; shift 2
-  "$@" >out.txt 2>err.txt; rc=$?
-  if [ "$rc" -eq "$code" ]; then echo "ok   $d (exit $rc)"; else echo "FAIL $d: exit $rc, wanted $code"; cat err.txt; fail=1; fi
-}
-has() { grep -q -- "$1" "$2"; }
+. "$SRC/tests/cli/test_lib.sh"
 
 TRI="$SRC/examples/triaxial/triaxial.json"
 expect_exit 0 "triaxial to stdout" "$PMECH" material "$TRI"
@@ -68,5 +60,4 @@ bad_case "friction angle 95" 's/"friction_angle": 25/"friction_angle": 95/' "mat
 bad_case "negative cohesion" 's/"cohesion": 5.0e3/"cohesion": -5/' "materials\[0\].cohesion"
 bad_case "dilatancy above friction" 's/"dilatancy_angle": 0/"dilatancy_angle": 30/' "materials\[0\].dilatancy_angle"
 
-if [ $fail -eq 0 ]; then echo "all material CLI checks passed"; fi
-exit $fail
+finish "all material CLI checks passed"
