@@ -86,11 +86,15 @@ static inline void constrain(const pm_contact_field *f, int32_t n, double v[PM_D
 
 /* The impulse the law gave one node, as a force on the material, into its surface's resultant. */
 static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double m, const double before[PM_DIM],
-                      const double after[PM_DIM], double dt)
+                      const double after[PM_DIM], double dt, double dt_acc)
 {
+    /* the law's velocity change is an acceleration over dt_acc, which the scheme carries over the
+     * whole step: its impulse over dt is (dt / dt_acc) m dv (Newmark's predictor-corrector applies
+     * the law over gamma dt; MUSL and USL over dt, where the ratio is exactly 1) */
+    const double r = dt / dt_acc;
     double dv[PM_DIM];
     for (int d = 0; d < PM_DIM; d++)
-        dv[d] = after[d] - before[d];
+        dv[d] = r * (after[d] - before[d]);
     const double dvn = dot(dv, cn->normal);
     sf->f.normal -= m * dvn / dt;
     sf->impulse.normal -= m * dvn;
@@ -110,21 +114,22 @@ static void add_force(pm_contact_surface *sf, const pm_contact_node *cn, double 
  * its normal push, the impulse, its tangential part), as a force on the material, into its surface's
  * resultant. Split at the points, each along its own normal: an obstacle's points near a node may push
  * along normals that are not the node's. */
-static void add_point_force(pm_contact_surface *sf, int32_t node, const double *row, double dt)
+static void add_point_force(pm_contact_surface *sf, int32_t node, const double *row, double dt, double dt_acc)
 {
     const double *J = row + 1, *Jt = row + 1 + PM_DIM;
-    sf->f.normal += row[0] / dt;
-    sf->impulse.normal += row[0];
+    const double r = dt / dt_acc; /* as in add_force */
+    sf->f.normal += row[0] / dt_acc;
+    sf->impulse.normal += r * row[0];
     for (int d = 0; d < PM_DIM; d++) {
-        sf->f.force[d] += J[d] / dt;
-        sf->f.tangent[d] += Jt[d] / dt;
-        sf->impulse.force[d] += J[d];
-        sf->impulse.tangent[d] += Jt[d];
+        sf->f.force[d] += J[d] / dt_acc;
+        sf->f.tangent[d] += Jt[d] / dt_acc;
+        sf->impulse.force[d] += r * J[d];
+        sf->impulse.tangent[d] += r * Jt[d];
     }
     double *P = sf->node_impulse + (size_t)(1 + PM_DIM) * (size_t)node;
-    P[0] += row[0];
+    P[0] += r * row[0];
     for (int d = 0; d < PM_DIM; d++)
-        P[1 + d] += Jt[d];
+        P[1 + d] += r * Jt[d];
 }
 
 /* Whether the nodal law of surface sf acts at the material's touching points in this step. */
@@ -313,7 +318,7 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         if (cn->held)
             cn->vn_held = dot(v, cn->normal) - (sf->motion ? dot(sf->vel, cn->normal) : 0.0);
         if (acted)
-            add_force(sf, cn, f.mass[n], before, v, dt);
+            add_force(sf, cn, f.mass[n], before, v, dt, dt_acc);
         constrain(&f, n, v);
         for (int d = 0; d < PM_DIM; d++)
             f.acc[PM_DIM * n + d] = (v[d] - f.v0[PM_DIM * n + d]) / dt_acc;
@@ -359,7 +364,7 @@ void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_a
         if (cn->held)
             cn->vn_held = dot(v, cn->normal) - (sf->motion ? dot(sf->vel, cn->normal) : 0.0);
         if (acted)
-            add_point_force(sf, n, row, dt);
+            add_point_force(sf, n, row, dt, dt_acc);
         constrain(&f, n, v);
         for (int d = 0; d < PM_DIM; d++)
             f.acc[PM_DIM * n + d] = (v[d] - f.v0[PM_DIM * n + d]) / dt_acc;

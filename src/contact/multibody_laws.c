@@ -89,8 +89,10 @@ static int act(const pm_multibody *mb, const double *mass, double floor, size_t 
 
 /* The pair laws at every shared node, on velocities v (full: with friction and forces). A stuck
  * field's acceleration is that of the centre of mass, (vcm - vcm0) / dt_acc, as in a single field,
- * so that a no_slip pair moves its particles exactly as one field would. */
-static void pair_laws(pm_sim *s, double *v, int full, double dt, double dt_acc)
+ * so that a no_slip pair moves its particles exactly as one field would. The pair force is the
+ * velocity change over dt_acc too: that is the acceleration the law adds, which a scheme applying it
+ * over part of the step (Newmark's gamma dt) carries over the whole step. */
+static void pair_laws(pm_sim *s, double *v, int full, double dt_acc)
 {
     pm_multibody *mb = s->mb;
     const pm_nodal *nd = &s->nd;
@@ -120,7 +122,7 @@ static void pair_laws(pm_sim *s, double *v, int full, double dt, double dt_acc)
                 continue;
             double *f = mb->pair_force + PM_DIM * ((size_t)a * (size_t)mb->n_fields + (size_t)b);
             for (int d = 0; d < PM_DIM; d++)
-                f[d] += nd->mass[e] * (va[d] - before[d]) / dt;
+                f[d] += nd->mass[e] * (va[d] - before[d]) / dt_acc;
         }
     }
 }
@@ -140,7 +142,7 @@ void pm_multibody_apply(pm_sim *s, double *v, double dt, double dt_acc)
     pm_multibody *mb = s->mb;
     const size_t nf = (size_t)mb->n_fields;
     memset(mb->pair_force, 0, PM_DIM * nf * nf * sizeof(double));
-    pair_laws(s, v, 1, dt, dt_acc);
+    pair_laws(s, v, 1, dt_acc);
     pm_contact *ct = s->contact;
     if (!ct || !ct->n_surfaces)
         return;
@@ -165,7 +167,7 @@ void pm_multibody_apply(pm_sim *s, double *v, double dt, double dt_acc)
 
 void pm_multibody_project(pm_sim *s, double *v)
 {
-    pair_laws(s, v, 0, 0.0, 0.0);
+    pair_laws(s, v, 0, 0.0);
     if (!s->contact)
         return;
     const double floor = pm_xp_mass_floor(s);
