@@ -97,6 +97,34 @@ check "energy.csv header" sh -c 'head -1 disks.out/energy.csv | grep -q "^time,k
 check "energy.csv has one row per time" sh -c '[ -z "$(cut -d, -f1 disks.out/energy.csv | sort | uniq -d)" ]'
 check "run.json speed" python3 -c "import json,sys; r=json.load(open('disks.out/run.json')); sys.exit(0 if r['particle_steps_per_second']>0 and r['steps']>0 else 1)"
 
+# The speed of a run whose particle count grows: six portions of 32 points released every 0.03 s from
+# t = 0 into a run of 2000 steps of 1e-4 s. The particles actually stepped are, per release, its count
+# times the steps left after it (releases.csv): 32 (2000 + 1700 + ... + 500) = 240,000, four times the
+# 64,000 the first portion's count alone gives. run.json's speed must be that sum over its loop seconds
+# (to rounding, 1e-9) and the progress line's last rate the same to its three printed digits (0.5 %).
+cat > fill.json <<'CASE'
+{ "dimension": 2,
+  "analysis": { "type": "explicit", "scheme": "musl", "end_time": 0.2, "dt": 1.0e-4, "gravity": [0.0, -9.81] },
+  "grid": { "type": "rectangle", "origin": [0.0, 0.0], "size": [0.5, 0.5], "cells": [10, 10] },
+  "materials": [ { "name": "grain", "model": "linear_elastic", "density": 1500, "youngs_modulus": 1.0e6,
+                   "poisson_ratio": 0.3 } ],
+  "sources": [ { "name": "hopper", "material": "grain", "shape": { "type": "rectangle", "min": [0.1, 0.3], "max": [0.3, 0.4] },
+                 "particles_per_cell": 2, "period": 0.03, "until": 0.15 } ],
+  "boundary_conditions": [ { "type": "fixed", "boundary": "y_min", "directions": ["x", "y"] } ],
+  "output": { "interval": 0.1 } }
+CASE
+expect_exit 0 "a filling run" "$PMECH" run fill.json -o fill.out --threads 1
+check "the speed counts the particles stepped, not those at the start" python3 -c "
+import csv, json, re, sys
+r = json.load(open('fill.out/run.json'))
+rel = list(csv.DictReader(open('fill.out/releases.csv')))
+stepped = sum(int(q['particles']) * round((r['end_time'] - float(q['time'])) / 1e-4) for q in rel)
+want = stepped / r['loop_seconds']
+line = [l for l in open('err.txt') if 'particle-steps/s' in l][-1]
+shown = float(re.search(r'([0-9.e+-]+) M particle-steps/s', line).group(1)) * 1e6
+print('stepped %d, run.json %.6g/s, progress %.3g/s, wanted %.6g/s' % (stepped, r['particle_steps_per_second'], shown, want))
+sys.exit(0 if stepped == 240000 and abs(r['particle_steps_per_second'] / want - 1) < 1e-9 and abs(shown / want - 1) < 5e-3 else 1)"
+
 # Pictures redrawn from the frames of that run: one per frame, any field.
 frames=$(python3 -c "import json; print(json.load(open('disks.out/run.json'))['frames'])")
 expect_exit 0 "render q" "$PMECH" render disks.out --field q -o pics --quiet
