@@ -5,10 +5,10 @@
  *
  * The speed counts the time loop only (the seconds the caller spent in steps, not in writing
  * frames) and the particles each step actually stepped (the caller's running sum, which follows
- * sources and sinks), as run.json does. The ETA divides the simulated time left by the recent rate of simulated
- * time: a time-weighted moving average of the logarithm of wall seconds per simulated second, with a
- * 30-second memory, so that it follows a shrinking (or growing) step within a minute or two instead of
- * averaging over the whole run.
+ * sources and sinks), as run.json does. The ETA divides the simulated time left by the recent rate
+ * of simulated time: a time-weighted moving average of the logarithm of wall seconds per simulated
+ * second, with a 30-second memory, so that it follows a shrinking (or growing) step within a minute
+ * or two instead of averaging over the whole run.
  */
 #ifndef PMECH_PROGRESS_H
 #define PMECH_PROGRESS_H
