@@ -431,7 +431,8 @@ void pm_contact_implicit(const pm_contact *ct, const double *mass, double mass_f
 
 /**
  * Implicit steps, after a converged attempt of length @p dt: keep every node's force for the next
- * step; each surface's resultant (pm_contact_force_of) and impulse are the converged ones.
+ * step; each surface's resultant (pm_contact_force_of), impulse and per-node impulses (the wall
+ * profiles) are the converged ones.
  */
 void pm_contact_implicit_accept(pm_contact *ct, const double *mass, double mass_floor,
                                 const struct pm_implicit_ws *w, double dt);

@@ -188,12 +188,16 @@ void pm_contact_implicit_accept(pm_contact *ct, const double *mass, double mass_
         if (sf->guard || !(m > 0) || !isfinite(cn->gap) || !entry_law(ct, cn, m, w->du, &ef))
             continue;
         double *keep = ct->held_next + PM_DIM * history_row(ct, cn);
+        /* the wall profiles (profile.c) read the node's impulse, as explicit steps leave it */
+        double *J = sf->node_impulse + (size_t)(1 + PM_DIM) * (size_t)cn->node;
         for (int d = 0; d < PM_DIM; d++) {
             keep[d] = ef.f[d];
             sf->f.force[d] += ef.f[d];
             sf->f.tangent[d] += ef.t[d];
+            J[1 + d] += ef.t[d] * dt;
         }
         sf->f.normal += ef.normal;
+        J[0] += ef.normal * dt;
     }
     double *swap = ct->held;
     ct->held = ct->held_next;

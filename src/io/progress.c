@@ -19,18 +19,16 @@ double pm_wall_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-void pm_progress_begin(pm_progress *pg, FILE *out, double end_time, size_t particles, int quiet)
+void pm_progress_begin(pm_progress *pg, FILE *out, double end_time, int quiet)
 {
     pg->out = out;
     pg->quiet = quiet || !out;
     int fd = out ? fileno(out) : -1;
     pg->tty = !pg->quiet && fd >= 0 && isatty(fd);
     pg->end_time = end_time;
-    pg->particles = particles;
     pg->wall_start = pm_wall_seconds();
     pg->last_print = pg->last_wall = pg->wall_start;
-    pg->last_step = 0;
-    pg->last_loop = pg->last_t = 0;
+    pg->last_loop = pg->last_t = pg->last_psteps = 0;
     pg->log_pace = 0;
     pg->have_pace = 0;
 }
@@ -77,7 +75,8 @@ static void sample_pace(pm_progress *pg, double t, double now)
     pg->last_t = t;
 }
 
-void pm_progress_update_at(pm_progress *pg, long step, double t, double loop_seconds, double now)
+void pm_progress_update_at(pm_progress *pg, long step, double t, double loop_seconds, double particle_steps,
+                           double now)
 {
     if (pg->quiet || now - pg->last_print < (pg->tty ? TTY_PERIOD : LOG_PERIOD))
         return;
@@ -85,7 +84,7 @@ void pm_progress_update_at(pm_progress *pg, long step, double t, double loop_sec
     const double left = pg->end_time - t;
     const double eta = !pg->have_pace ? -1.0 : left > 0 ? left * exp(pg->log_pace) : 0.0;
     const double dl = loop_seconds - pg->last_loop;
-    const double rate = dl > 0 ? (double)pg->particles * (double)(step - pg->last_step) / dl : 0.0;
+    const double rate = dl > 0 ? (particle_steps - pg->last_psteps) / dl : 0.0;
     if (pg->tty)
         fputc('\r', pg->out);
     print_line(pg, step, t, "ETA", eta, rate);
@@ -93,33 +92,34 @@ void pm_progress_update_at(pm_progress *pg, long step, double t, double loop_sec
     fputs(pg->tty ? "\033[K" : "\n", pg->out);
     fflush(pg->out);
     pg->last_print = now;
-    pg->last_step = step;
     pg->last_loop = loop_seconds;
+    pg->last_psteps = particle_steps;
 }
 
-void pm_progress_update(pm_progress *pg, long step, double t, double loop_seconds)
+void pm_progress_update(pm_progress *pg, long step, double t, double loop_seconds, double particle_steps)
 {
     if (pg->quiet)
         return;
-    pm_progress_update_at(pg, step, t, loop_seconds, pm_wall_seconds());
+    pm_progress_update_at(pg, step, t, loop_seconds, particle_steps, pm_wall_seconds());
 }
 
-void pm_progress_end_at(pm_progress *pg, long step, double t, double loop_seconds, double now)
+void pm_progress_end_at(pm_progress *pg, long step, double t, double loop_seconds, double particle_steps,
+                        double now)
 {
     if (pg->quiet)
         return;
-    const double rate = loop_seconds > 0 ? (double)pg->particles * (double)step / loop_seconds : 0.0;
+    const double rate = loop_seconds > 0 ? particle_steps / loop_seconds : 0.0;
     if (pg->tty)
         fputc('\r', pg->out);
     print_line(pg, step, t, "wall", now - pg->wall_start, rate);
     fputs(pg->tty ? "\033[K\n" : "\n", pg->out);
     fflush(pg->out);
     pg->last_print = now;
-    pg->last_step = step;
     pg->last_loop = loop_seconds;
+    pg->last_psteps = particle_steps;
 }
 
-void pm_progress_end(pm_progress *pg, long step, double t, double loop_seconds)
+void pm_progress_end(pm_progress *pg, long step, double t, double loop_seconds, double particle_steps)
 {
-    pm_progress_end_at(pg, step, t, loop_seconds, pm_wall_seconds());
+    pm_progress_end_at(pg, step, t, loop_seconds, particle_steps, pm_wall_seconds());
 }

@@ -318,6 +318,8 @@ int pm_implicit_step(pm_sim *s, double dt, FILE *log, pm_implicit_report *rep)
             h *= 0.5;
             continue;
         }
+        if (w->quasi_static) /* its wall profiles are of the last load step alone (walls_log.h) */
+            pm_contact_profile_reset(s->contact);
         pm_contact_implicit_accept(s->contact, s->nd.mass, pm_implicit_mass_floor(s), w, h);
         const int crc = convect(s, w);
         s->t += h;

@@ -284,7 +284,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         rc = pm_checkpoint_restore_outputs(ck, s, out, &forces, walls.n ? &walls.t_last : NULL, &logs);
     pm_checkpoint_close(ck);
     pm_progress pg;
-    pm_progress_begin(&pg, stderr, end, s->p.n, o->quiet || o->verbose);
+    pm_progress_begin(&pg, stderr, end, o->quiet || o->verbose);
     while (!rc && s->t < end - eps) {
         double dt = next_dt(s);
         if (s->t + dt > end)
@@ -335,7 +335,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             if (rc)
                 break;
         }
-        pm_progress_update(&pg, s->step, s->t, loop.loop_seconds);
+        pm_progress_update(&pg, s->step, s->t, loop.loop_seconds, loop.particle_steps);
         if (o->interrupt && *o->interrupt) {
             /* the state after a whole step: what a restart continues from */
             if (out && (rc = write_checkpoint(&ckr, dir, &imf)) != PM_OK)
@@ -374,7 +374,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         st->max_displacement = max_displacement(&s->p);
         st->wall_seconds = pm_wall_seconds() - wall0;
     }
-    pm_progress_end(&pg, s->step, s->t, loop.loop_seconds);
+    pm_progress_end(&pg, s->step, s->t, loop.loop_seconds, loop.particle_steps);
     close_implicit_files(&imf);
     int rc_log = pm_flow_log_close(&flog);
     if (!rc && rc_log)

@@ -1,6 +1,8 @@
 /* wall_<name>.csv and wall_<name>.png (walls_log.h). */
 #include "solver/walls_log.h"
 
+#include "solver/implicit_internal.h"
+
 #include "io/plot.h"
 #include "pmech/error.h"
 
@@ -21,7 +23,7 @@ int pm_walls_log_open(pm_walls_log *log, pm_sim *s, const char *dir)
     size_t n = 0;
     for (size_t k = 0; ct && k < ct->n_surfaces; k++)
         n += reported(&ct->surface[k]);
-    if (!n || s->c->analysis.type != PM_ANALYSIS_EXPLICIT)
+    if (!n)
         return PM_OK;
     log->wall = calloc(n, sizeof *log->wall);
     if (!log->wall)
@@ -59,7 +61,9 @@ int pm_walls_log_open(pm_walls_log *log, pm_sim *s, const char *dir)
 
 int pm_walls_log_frame(pm_walls_log *log, pm_sim *s)
 {
-    const double span = s->t - log->t_last;
+    /* quasi-static: the impulses are those of the last accepted substep alone, of that length */
+    const int last_step_only = s->c->analysis.type == PM_ANALYSIS_QUASI_STATIC && s->implicit;
+    const double span = last_step_only ? s->implicit->dt : s->t - log->t_last;
     if (!log->n || !(span > 0))
         return PM_OK;
     for (size_t w = 0; w < log->n; w++) {

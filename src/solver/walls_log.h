@@ -1,7 +1,10 @@
 /*
  * Wall traction profiles: for every friction condition and obstacle, wall_<name>.csv holds, at every
  * frame after the first, the traction along the wall averaged over the time since the frame before
- * (pm_contact_profile), and at the end wall_<name>.png draws the last one.
+ * (pm_contact_profile), and at the end wall_<name>.png draws the last one. Quasi-static runs, whose
+ * time only orders the load steps, write the traction of the frame's last (sub)step instead: an
+ * average over load steps would mix states under different loads (pm_implicit_step keeps only that
+ * step's impulses).
  */
 #ifndef PMECH_WALLS_LOG_H
 #define PMECH_WALLS_LOG_H
@@ -31,7 +34,7 @@ typedef struct pm_walls_log {
     long frames;                  /**< profiles written */
 } pm_walls_log;
 
-/** Open a wall_<name>.csv in @p dir for every reported surface of @p s (explicit runs only). */
+/** Open a wall_<name>.csv in @p dir for every reported surface of @p s. */
 int pm_walls_log_open(pm_walls_log *log, pm_sim *s, const char *dir);
 
 /** At a frame: every wall's profile since the last one appended to its CSV (nothing when no time

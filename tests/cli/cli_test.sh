@@ -86,6 +86,66 @@ check "energy.csv header" sh -c 'head -1 disks.out/energy.csv | grep -q "^time,k
 check "energy.csv has one row per time" sh -c '[ -z "$(cut -d, -f1 disks.out/energy.csv | sort | uniq -d)" ]'
 check "run.json speed" python3 -c "import json,sys; r=json.load(open('disks.out/run.json')); sys.exit(0 if r['particle_steps_per_second']>0 and r['steps']>0 else 1)"
 
+# The speed of a run whose particle count grows: six portions of 32 points released every 0.03 s from
+# t = 0 into a run of 2000 steps of 1e-4 s. The particles actually stepped are, per release, its count
+# times the steps left after it (releases.csv): 32 (2000 + 1700 + ... + 500) = 240,000, four times the
+# 64,000 the first portion's count alone gives. run.json's speed must be that sum over its loop seconds
+# (to rounding, 1e-9) and the progress line's last rate the same to its three printed digits (0.5 %).
+cat > fill.json <<'CASE'
+{ "dimension": 2,
+  "analysis": { "type": "explicit", "scheme": "musl", "end_time": 0.2, "dt": 1.0e-4, "gravity": [0.0, -9.81] },
+  "grid": { "type": "rectangle", "origin": [0.0, 0.0], "size": [0.5, 0.5], "cells": [10, 10] },
+  "materials": [ { "name": "grain", "model": "linear_elastic", "density": 1500, "youngs_modulus": 1.0e6,
+                   "poisson_ratio": 0.3 } ],
+  "sources": [ { "name": "hopper", "material": "grain", "shape": { "type": "rectangle", "min": [0.1, 0.3], "max": [0.3, 0.4] },
+                 "particles_per_cell": 2, "period": 0.03, "until": 0.15 } ],
+  "boundary_conditions": [ { "type": "fixed", "boundary": "y_min", "directions": ["x", "y"] } ],
+  "output": { "interval": 0.1 } }
+CASE
+expect_exit 0 "a filling run" "$PMECH" run fill.json -o fill.out --threads 1
+check "the speed counts the particles stepped, not those at the start" python3 -c "
+import csv, json, re, sys
+r = json.load(open('fill.out/run.json'))
+rel = list(csv.DictReader(open('fill.out/releases.csv')))
+stepped = sum(int(q['particles']) * round((r['end_time'] - float(q['time'])) / 1e-4) for q in rel)
+want = stepped / r['loop_seconds']
+line = [l for l in open('err.txt') if 'particle-steps/s' in l][-1]
+shown = float(re.search(r'([0-9.e+-]+) M particle-steps/s', line).group(1)) * 1e6
+print('stepped %d, run.json %.6g/s, progress %.3g/s, wanted %.6g/s' % (stepped, r['particle_steps_per_second'], shown, want))
+sys.exit(0 if stepped == 240000 and abs(r['particle_steps_per_second'] / want - 1) < 1e-9 and abs(shown / want - 1) < 5e-3 else 1)"
+
+# Wall profiles of a quasi-static run: a block 0.4 x 0.2 m of 1000 kg/m^3 on a friction floor, gravity
+# in four load steps, frames at loads 0.5 and 1. Each frame's profile is its last load step's (an
+# average over the steps since the frame before would give 0.75 of the weight at the first): integrated
+# along the floor it is the block's weight at that load, 392.4 and 784.8 N/m, to the Newton tolerance
+# (1e-6 relative; the profile only regroups the nodal forces).
+cat > qs_block.json <<'CASE'
+{ "dimension": 2,
+  "analysis": { "type": "quasi_static", "end_time": 1.0, "load_steps": 4, "gravity": [0.0, -9.81] },
+  "grid": { "type": "rectangle", "origin": [0.0, 0.0], "size": [0.6, 0.4], "cells": [12, 8] },
+  "materials": [ { "name": "block", "model": "linear_elastic", "density": 1000, "youngs_modulus": 1.0e6,
+                   "poisson_ratio": 0.3 } ],
+  "bodies": [ { "name": "block", "material": "block", "shape": { "type": "rectangle", "min": [0.1, 0.0], "max": [0.5, 0.2] },
+                "particles_per_cell": 2 } ],
+  "boundary_conditions": [ { "type": "fixed", "boundary": { "x": 0.3 }, "directions": ["x"] },
+                           { "type": "friction", "boundary": "y_min", "coefficient": 0.3 } ],
+  "output": { "interval": 0.5 } }
+CASE
+expect_exit 0 "a quasi-static block on a friction floor" "$PMECH" run qs_block.json -o qs_block.out --quiet
+check "its floor profile carries the weight of each frame's load" python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open('qs_block.out/wall_boundary_conditions1.csv')))
+ok = True
+for t, want in ((0.5, 392.4), (1.0, 784.8)):
+    st = [r for r in rows if abs(float(r['time']) - t) < 1e-9]
+    h = float(st[1]['s']) - float(st[0]['s'])
+    share = [0.5 * h if j in (0, len(st) - 1) else h for j in range(len(st))]
+    fn = sum(float(r['normal']) * w for r, w in zip(st, share))
+    ft = sum(float(r['tangent']) * w for r, w in zip(st, share))
+    print('t = %g: normal %.6g N/m (weight %.6g), tangential %.3g' % (t, fn, want, ft))
+    ok &= abs(fn / want - 1) < 1e-6 and abs(ft) < 1e-6 * want
+sys.exit(0 if ok else 1)"
+
 # Pictures redrawn from the frames of that run: one per frame, any field.
 frames=$(python3 -c "import json; print(json.load(open('disks.out/run.json'))['frames'])")
 expect_exit 0 "render q" "$PMECH" render disks.out --field q -o pics --quiet

@@ -57,28 +57,28 @@ static void log_lines_every_ten_seconds(void **state)
     FILE *f = tmpfile();
     assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 2.0, 1000, 0);
+    pm_progress_begin(&pg, f, 2.0, 0);
     assert_int_equal(pg.tty, 0); /* a regular file is not a terminal */
     const double w0 = pg.wall_start;
     /* straight after begin: nothing */
     for (long s = 1; s <= 1000; s++)
-        pm_progress_update_at(&pg, s, 1e-3 * (double)s, 1e-3 * (double)s, w0 + 1e-3 * (double)s);
+        pm_progress_update_at(&pg, s, 1e-3 * (double)s, 1e-3 * (double)s, 1e3 * (double)s, w0 + 1e-3 * (double)s);
     char *t = contents(f);
     assert_string_equal(t, "");
     free(t);
-    pm_progress_update_at(&pg, 1000, 1.0, 1.0, w0 + 10.0);
+    pm_progress_update_at(&pg, 1000, 1.0, 1.0, 1e6, w0 + 10.0);
     t = contents(f);
     assert_true(matches(t, "^" LINE_RE "ETA [0-9]+:[0-9]{2}:[0-9]{2}" RATE_RE "\n$"));
     assert_non_null(strstr(t, "step 1000  t = 1.000e+00 s  50.0 %  ETA 0:00:10  1 M particle-steps/s\n"));
     assert_null(strchr(t, '\r'));
     free(t);
     /* right after a line: quiet again */
-    pm_progress_update_at(&pg, 1001, 1.001, 1.001, w0 + 10.5);
+    pm_progress_update_at(&pg, 1001, 1.001, 1.001, 1.001e6, w0 + 10.5);
     t = contents(f);
     assert_int_equal(strchr(t, '\n') - t + 1, (long)strlen(t));
     free(t);
     /* the end: the whole wall time, and the loop's speed over the run (2000 steps in 4 s: 0.5 M) */
-    pm_progress_end_at(&pg, 2000, 2.0, 4.0, w0 + 20.0);
+    pm_progress_end_at(&pg, 2000, 2.0, 4.0, 2e6, w0 + 20.0);
     t = contents(f);
     const char *last = strchr(t, '\n') + 1;
     assert_true(matches(last, "^" LINE_RE "wall [0-9]+:[0-9]{2}:[0-9]{2}" RATE_RE "\n$"));
@@ -97,14 +97,14 @@ static void eta_follows_a_shrinking_step(void **state)
     FILE *f = tmpfile();
     assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 2.0, 10, 0);
+    pm_progress_begin(&pg, f, 2.0, 0);
     const double w0 = pg.wall_start;
     double t = 1.0, w = w0 + 10.0;
-    pm_progress_update_at(&pg, 100, t, 1.0, w);
+    pm_progress_update_at(&pg, 100, t, 1.0, 1e3, w);
     for (int k = 0; k < 12; k++) {
         t += 1e-3;
         w += 10.0;
-        pm_progress_update_at(&pg, 101 + k, t, 1.0, w);
+        pm_progress_update_at(&pg, 101 + k, t, 1.0, 10.0 * (101 + k), w);
     }
     const double want = (2.0 - t) * 1e4; /* seconds left at 10 s per 1e-3 s */
     const double eta = (2.0 - t) * exp(pg.log_pace);
@@ -119,16 +119,16 @@ static void terminal_redraws_one_line(void **state)
     FILE *f = tmpfile();
     assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 1.0, 10, 0);
+    pm_progress_begin(&pg, f, 1.0, 0);
     pg.tty = 1; /* as if stderr were a terminal */
-    pm_progress_update_at(&pg, 1, 0.1, 0.01, pg.wall_start + 0.1); /* within 0.2 s of begin: nothing */
+    pm_progress_update_at(&pg, 1, 0.1, 0.01, 10, pg.wall_start + 0.1); /* within 0.2 s of begin: nothing */
     char *t = contents(f);
     assert_string_equal(t, "");
     free(t);
     const double w0 = pg.wall_start;
-    pm_progress_update_at(&pg, 2, 0.2, 0.1, w0 + 0.25);
-    pm_progress_update_at(&pg, 3, 0.3, 0.2, w0 + 0.5);
-    pm_progress_end_at(&pg, 10, 1.0, 0.5, w0 + 1.0);
+    pm_progress_update_at(&pg, 2, 0.2, 0.1, 20, w0 + 0.25);
+    pm_progress_update_at(&pg, 3, 0.3, 0.2, 30, w0 + 0.5);
+    pm_progress_end_at(&pg, 10, 1.0, 0.5, 100, w0 + 1.0);
     t = contents(f);
     /* three redraws of the same line, each clearing the rest of it; a newline only at the end */
     assert_true(matches(t, "^\r" LINE_RE "ETA [^\r\n]*" RATE_RE "\033\\[K"
@@ -145,9 +145,9 @@ static void quiet_prints_nothing(void **state)
     FILE *f = tmpfile();
     assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 1.0, 10, 1);
-    pm_progress_update_at(&pg, 5, 0.5, 1.0, pg.wall_start + 100);
-    pm_progress_end(&pg, 10, 1.0, 2.0);
+    pm_progress_begin(&pg, f, 1.0, 1);
+    pm_progress_update_at(&pg, 5, 0.5, 1.0, 50, pg.wall_start + 100);
+    pm_progress_end(&pg, 10, 1.0, 2.0, 100);
     char *t = contents(f);
     assert_string_equal(t, "");
     free(t);
@@ -160,10 +160,41 @@ static void unknown_eta_before_time_advances(void **state)
     FILE *f = tmpfile();
     assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 1.0, 10, 0);
-    pm_progress_update_at(&pg, 0, 0.0, 0.0, pg.wall_start + 11);
+    pm_progress_begin(&pg, f, 1.0, 0);
+    pm_progress_update_at(&pg, 0, 0.0, 0.0, 0.0, pg.wall_start + 11);
     char *t = contents(f);
     assert_non_null(strstr(t, "0.0 %  ETA -:--:--  "));
+    free(t);
+    fclose(f);
+}
+
+/* A run whose particle count grows (sources) or shrinks (sinks): the speed is the particles actually
+ * stepped, the caller's running sum, per second of loop time. Here a filling that adds 10 particles
+ * every step from 10: after 1000 steps it has stepped sum(10 k, k = 1..1000) = 5.005e6 particle-steps;
+ * in 1 s of loop time that is 5.005 M/s, not the 0.01 M/s its 10 particles at the start would give
+ * (what the line said before it took the sum). The next line covers steps 1001-2000 alone (15.005e6
+ * particle-steps in 1 s), and the last one the whole run (20.01e6 in 2 s). */
+static void rate_follows_a_growing_count(void **state)
+{
+    (void)state;
+    FILE *f = tmpfile();
+    assert_non_null(f);
+    pm_progress pg;
+    pm_progress_begin(&pg, f, 2.0, 0);
+    const double w0 = pg.wall_start;
+    double sum = 0;
+    for (long k = 1; k <= 2000; k++) {
+        sum += 10.0 * (double)k;
+        if (k == 1000)
+            pm_progress_update_at(&pg, k, 1e-3 * (double)k, 1.0, sum, w0 + 10.0);
+        else if (k == 2000)
+            pm_progress_update_at(&pg, k, 1e-3 * (double)k, 2.0, sum, w0 + 20.0);
+    }
+    pm_progress_end_at(&pg, 2000, 2.0, 2.0, sum, w0 + 20.0);
+    char *t = contents(f);
+    assert_non_null(strstr(t, "step 1000  t = 1.000e+00 s  50.0 %  ETA 0:00:10  5 M particle-steps/s\n"));
+    assert_non_null(strstr(t, "step 2000  t = 2.000e+00 s  100.0 %  ETA 0:00:00  15 M particle-steps/s\n"));
+    assert_non_null(strstr(t, "step 2000  t = 2.000e+00 s  100.0 %  wall 0:00:20  10 M particle-steps/s\n"));
     free(t);
     fclose(f);
 }
@@ -177,6 +208,7 @@ int main(void)
         cmocka_unit_test(terminal_redraws_one_line),
         cmocka_unit_test(quiet_prints_nothing),
         cmocka_unit_test(unknown_eta_before_time_advances),
+        cmocka_unit_test(rate_follows_a_growing_count),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

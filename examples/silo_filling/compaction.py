@@ -1,0 +1,121 @@
+"""Where the deposit's over-compaction comes from: short fills of ten portions (t = 0-1.8 s, run to
+3.5 s) in variants of case.json, and three volumes of each deposit at its end.
+
+    python3 examples/silo_filling/compaction.py case VARIANT OUT.json
+        VARIANT: drop5 (portions fall 5 m and land at 10 m/s, as in case.json), drop1 (they fall
+        1.35 m, 5 m/s, in a grid 1.6 m high), fine (drop5 on 25 mm cells, 3 x 3 points per cell,
+        dt 2e-5 s, below its stable step of 2.3e-5 s), dt2 (drop5 at the paper's dt = 2e-5 s: the
+        step fine runs at, on case.json's 50 mm cells), drop5x30 (drop5 with 30 portions, t = 0-5.8 s, run
+        to 7 s), finex30 (fine with those 30 portions), drop1x30
+        (drop1 with those 30 portions)
+    python3 examples/silo_filling/compaction.py measure RUN_DIR [RUN_DIR ...]
+
+The three volumes (m^2 per metre of depth) of the deposit's points (those joined to the floor, as
+figures.py finds them): from its surface (the area under the 50 mm columns' tops: what the positions
+occupy), from the model's state (sum m (1 + e) / rho_s with e = min(e0 - kappa ln(p / p0), e_max),
+the void ratio the granular law gives at each point's pressure: at rest its pressure is the elastic
+one, so this is the model's own eps_v), and from the points' deformation gradients (sum V0 det F,
+the VTU's volume). The granular law has no irreversible compaction, so a deposit at rest whose
+surface holds less than its state's volume is denser in its positions than in its material: the
+difference is numerical, not the model compacting as sand would. Also per 0.1 m layer from the
+floor: the mass in the layer over the layer's area against the density the state gives there.
+"""
+import copy
+import json
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from frames import last_frame, read_vtu  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figures as figs  # noqa: E402
+
+KAPPA, E0, P0, EMAX, RHO_S = 0.02, 0.9, 600.0, 1.0, 2850.0
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def make_case(variant, out):
+    c = json.load(open(os.path.join(HERE, "case.json")))
+    c = copy.deepcopy(c)
+    c["title"] = "Silo filling, ten portions (%s): where the deposit's over-compaction comes from" % variant
+    c["analysis"]["end_time"] = 3.5
+    src = c["sources"][0]
+    src["until"] = 1.8
+    c["output"] = {"directory": "compaction_%s.out" % variant, "interval": 0.5}
+    if variant in ("drop1", "drop1x30"):
+        src["shape"]["min"], src["shape"]["max"] = [0.0, 1.35], [0.2, 1.45]
+        c["grid"]["size"], c["grid"]["cells"] = [1.05, 1.6], [21, 32]
+        if variant == "drop1x30":
+            src["until"], c["analysis"]["end_time"] = 5.8, 7.0
+    elif variant == "fine":
+        c["grid"]["cells"] = [42, 208]
+        c["analysis"]["dt"] = 2.0e-5
+    elif variant == "dt2":
+        c["analysis"]["dt"] = 2.0e-5
+    elif variant in ("drop5x30", "finex30"):
+        src["until"], c["analysis"]["end_time"] = 5.8, 7.0
+        if variant == "finex30":
+            c["grid"]["cells"] = [42, 208]
+            c["analysis"]["dt"] = 2.0e-5
+    elif variant != "drop5":
+        sys.exit("unknown variant %s (drop5, drop1, fine, dt2, drop5x30, finex30, drop1x30)" % variant)
+    with open(out, "w") as fh:
+        json.dump(c, fh, indent=1)
+
+
+def e_of(p):
+    return min(E0 - KAPPA * math.log(p / P0), EMAX) if p > 0 else EMAX
+
+
+def measure(run):
+    t, path = last_frame(run)
+    f = read_vtu(path)
+    n, pts, m, hs, pr, vol = f["n"], f["Points"], f["mass"], f["half_size"], f["pressure"], f["volume"]
+    inside = figs.connected(n, pts, hs)
+    ncol = int(round(figs.WIDTH / figs.CELL))
+    top = [0.0] * ncol
+    mass = v_state = v_detf = 0.0
+    layers = {}
+    for i in range(n):
+        if not inside[i]:
+            continue
+        j = int(pts[3 * i] / figs.CELL)
+        if 0 <= j < ncol:
+            top[j] = max(top[j], pts[3 * i + 1] + hs[2 * i + 1])
+        mass += m[i]
+        vs = m[i] * (1 + e_of(pr[i])) / RHO_S
+        v_state += vs
+        v_detf += vol[i]
+        k = int(pts[3 * i + 1] / 0.1)
+        q = layers.setdefault(k, [0.0, 0.0, 0.0])
+        q[0] += m[i]
+        q[1] += vs
+        q[2] += m[i] * pr[i]
+    v_surf = sum(h * figs.CELL for h in top)
+    print("%s: t = %.2f s, deposit %.1f kg/m (%d of %d points); volume from its surface %.4f m^2, from the "
+          "model's state %.4f (surface / state %.3f), from det F %.4f (det F / state %.3f); mean density "
+          "%.0f kg/m^3 (state: %.0f, release: 1500)"
+          % (run, t, mass, sum(inside), n, v_surf, v_state, v_surf / v_state, v_detf, v_detf / v_state,
+             mass / v_surf, mass / v_state))
+    # the state at each layer's mean pressure: the pressures scatter from point to point (rows near
+    # zero between rows carrying the load), and e(p) is convex, so the points' own e overstate the
+    # volume a smooth field of the same mean would hold
+    v_mean = sum(q[0] * (1 + e_of(q[2] / q[0])) / RHO_S for q in layers.values())
+    print("  at each 0.1 m layer's mean pressure the state holds %.4f m^2 (surface / that %.3f, density "
+          "%.0f kg/m^3)" % (v_mean, v_surf / v_mean, mass / v_mean))
+    full = [k for k in sorted(layers) if (k + 1) * 0.1 <= min(top) + 1e-9]
+    if full:
+        print("  full layers (0.1 m from the floor): mass / area against the state's density at the layer's "
+              "mean pressure: " + ", ".join("%.3f" % ((layers[k][0] / (0.1 * figs.WIDTH)) * (1 + e_of(layers[k][2] / layers[k][0])) / RHO_S) for k in full))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 4 and sys.argv[1] == "case":
+        make_case(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) >= 3 and sys.argv[1] == "measure":
+        for r in sys.argv[2:]:
+            measure(r)
+    else:
+        sys.exit(__doc__)
