@@ -188,7 +188,9 @@ int pm_mf_create(pm_sim *s, int n_threads)
     g->element = bg->element;
     g->n_nodes = mf->cloud->n;
     g->x = mf->cloud->x;
-    g->h_min = mf->cloud->h;
+    /* the step's length: GMM keeps the grid's smallest cell size (its spacing on a structured grid),
+     * which a graded mesh's finest cells need, while its supports scale with the mean spacing */
+    g->h_min = mf->rkpm ? mf->cloud->h : bg->h_min;
     for (int d = 0; d < 2; d++) {
         g->lo[d] = bg->lo[d];
         g->hi[d] = bg->hi[d];

@@ -1,8 +1,9 @@
 /* The nodal spacing h of a GMM node cloud made from a grid, which seed 000's MLS support
  * r = 1.5 sqrt(2 h^2) scales with: the cell side of a structured grid (quads, or quads cut into
  * triangles), and on an unstructured mesh the square root of the area per node of the cells holding
- * particles, not the cells' smallest altitude (the time step's length). Each case's mesh has a known
- * spacing, and its smallest altitude differs from it, so that a cloud sized by the altitude fails. */
+ * particles, not the cells' smallest altitude, which stays the time step's length. Each case's mesh has
+ * a known spacing, and its smallest altitude differs from it, so that a cloud sized by the altitude
+ * fails. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -59,6 +60,8 @@ static void check_spacing(pm_sim *s, double h, const char *what)
            s->mf->background.h_min, r0);
     assert_true(fabs(got - h) < 1e-12 * h);
     assert_true(fabs(r0 - 1.5 * sqrt(2.0) * h) < 1e-12 * h);
+    /* the time step still follows the smallest cell, which a graded mesh's finest cells need */
+    assert_true(s->grid.h_min == s->mf->background.h_min);
 }
 
 /* The triangles of the Gmsh incline (tests/verification/cases/make_gmsh_incline.py): columns 0.01 apart,
