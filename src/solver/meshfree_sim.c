@@ -30,23 +30,66 @@
  * while a direct solver still factors the tangent accurately. */
 #define PM_MF_PENALTY 1e5
 
-/* GMM: the nodes of every cell holding a particle; map[old] = new index or -1. */
-static int gmm_nodes(const pm_grid *g, const pm_particles *p, int32_t *map, size_t *n_out)
+/* Area of cell c of an unstructured grid (its nodes counter-clockwise). */
+static double cell_area(const pm_grid *g, size_t c)
+{
+#if PM_DIM != 2
+#error "a cell's area is its polygon's in the plane"
+#endif
+    const int m = g->nodes_per_cell;
+    const int32_t *v = g->conn + (size_t)m * c;
+    double a2 = 0.0;
+    for (int k = 0; k < m; k++) {
+        const double *p = g->x + PM_DIM * v[k], *q = g->x + PM_DIM * v[(k + 1) % m];
+        a2 += p[0] * q[1] - q[0] * p[1];
+    }
+    return 0.5 * fabs(a2);
+}
+
+/*
+ * GMM: the nodes of every cell holding a particle; map[old] = new index or -1. *h_out: their nodal
+ * spacing, the length seed 000's support r = f sqrt(2 h^2) scales with: a structured grid's cell side,
+ * else the square root of the area per node of the cells holding particles. A triangulation has about
+ * two triangles per node (six around each node, three nodes to each triangle: Euler's formula), a quad
+ * mesh one quad, so that area is twice the mean triangle's or the mean quad's, and a structured grid cut
+ * into triangles gets its cell side either way. The smallest altitude, what the time step is limited
+ * by, is 0.56 of the spacing on the triangles of tests/verification/cases/gmsh_incline25.msh: it made
+ * supports of 1.2 spacings, every one grown by the adaptive rule to 6-9 nodes, and a block's bottom row
+ * of nodes shook against a frictional slope there (verify_gmsh_incline_meshfree).
+ */
+static int gmm_nodes(const pm_grid *g, const pm_particles *p, int32_t *map, size_t *n_out, double *h_out)
 {
     memset(map, 0xff, g->n_nodes * sizeof *map);
+    uint8_t *held = g->structured ? NULL : calloc(g->n_cells ? g->n_cells : 1, 1);
+    if (!g->structured && !held)
+        return pm_error_set(PM_ENOMEM, "out of memory");
+    double area = 0.0;
+    size_t cells = 0;
     for (size_t i = 0; i < p->n; i++) {
         int32_t cell = pm_grid_locate(g, p->x + 2 * i);
-        if (cell < 0)
+        if (cell < 0) {
+            free(held);
             return pm_error_set(PM_EINPUT, "particle %zu at (%g, %g) lies outside the grid", i, p->x[2 * i],
                                 p->x[2 * i + 1]);
+        }
         for (int k = 0; k < g->nodes_per_cell; k++)
             map[g->conn[(size_t)g->nodes_per_cell * cell + k]] = 0;
+        if (held && !held[cell]) {
+            held[cell] = 1;
+            area += cell_area(g, (size_t)cell);
+            cells++;
+        }
     }
+    free(held);
     size_t n = 0;
     for (size_t I = 0; I < g->n_nodes; I++)
         if (map[I] == 0)
             map[I] = (int32_t)n++;
     *n_out = n;
+    if (g->structured)
+        *h_out = fmin(g->h[0], g->h[1]);
+    else
+        *h_out = sqrt((g->nodes_per_cell == 3 ? 2.0 : 1.0) * area / (double)(cells ? cells : 1));
     return PM_OK;
 }
 
@@ -113,7 +156,7 @@ int pm_mf_create(pm_sim *s, int n_threads)
         map = malloc(bg->n_nodes * sizeof *map);
         if (!map)
             return pm_error_set(PM_ENOMEM, "out of memory");
-        rc = gmm_nodes(bg, p, map, &n);
+        rc = gmm_nodes(bg, p, map, &n, &co.h);
         if (!rc && !(x = malloc(2 * n * sizeof *x)))
             rc = pm_error_set(PM_ENOMEM, "out of memory for %zu nodes", n);
         for (size_t I = 0; !rc && I < bg->n_nodes; I++)
@@ -121,7 +164,6 @@ int pm_mf_create(pm_sim *s, int n_threads)
                 x[2 * map[I]] = bg->x[2 * I];
                 x[2 * map[I] + 1] = bg->x[2 * I + 1];
             }
-        co.h = bg->structured ? fmin(bg->h[0], bg->h[1]) : bg->h_min;
         if (!rc)
             rc = pm_cloud_create(n, x, NULL, &co, &mf->cloud);
         free(x);
@@ -146,7 +188,9 @@ int pm_mf_create(pm_sim *s, int n_threads)
     g->element = bg->element;
     g->n_nodes = mf->cloud->n;
     g->x = mf->cloud->x;
-    g->h_min = mf->cloud->h;
+    /* the step's length: GMM keeps the grid's smallest cell size (its spacing on a structured grid),
+     * which a graded mesh's finest cells need, while its supports scale with the mean spacing */
+    g->h_min = mf->rkpm ? mf->cloud->h : bg->h_min;
     for (int d = 0; d < 2; d++) {
         g->lo[d] = bg->lo[d];
         g->hi[d] = bg->hi[d];

@@ -8,21 +8,31 @@
  * degrees, below the friction angle (16.7 degrees), it must stay put: its travel along the slope below
  * 1 % of the frictionless g sin(theta) t^2 / 2. The slope's own force (the laws' impulses averaged over
  * the second half, as forces.csv writes it) against the statics of the rigid block within 2 %, as for
- * the MPM block: normal W cos(theta), tangential mu W cos(theta) sliding and W sin(theta) stuck.
+ * the MPM block: normal W cos(theta), tangential mu W cos(theta) sliding and W sin(theta) stuck, W the
+ * weight of the block as seeded (its particles' mass: the particles seeded on the triangles its sides
+ * cut weigh 1.7 % more than the polygon on the 25 degree mesh and 0.58 % more on the 10 degree one, an
+ * offset the polygon's weight would have spent most of the tolerance on).
  *
- * Expected to fail, and marked so instead of being given a tolerance it would pass: GMM's velocity at
- * 25 degrees, measured +2.2 %. Its block gains speed in two kicks (near 0.075 and 0.135 s); the same
- * block on an obstacles[] polyline along the same slope of the same mesh is +2.2 % too, and on a quad
- * grid's side with gravity tilted 25 degrees within 0.3 %, so it is GMM's on this triangle mesh, not
- * the wall's (whose forces pass). The test fails when that velocity comes within 2 %: the check must
- * then be judged.
+ * GMM's nodes are those of the mesh cells holding particles, and its MLS supports scale with their
+ * nodal spacing (src/solver/meshfree_sim.c). When that spacing was taken as the triangles' smallest
+ * altitude (0.56 of it here) every support was the adaptive rule's smallest, 6-9 nodes, and the
+ * block's bottom row of nodes shook along the slope at about 1.1 kHz with an amplitude above the
+ * sliding speed itself: those nodes stuck or slipped backwards for part of each cycle, the slope's
+ * friction fell to 0.26 of its normal force (0.071-0.077 s), and the block gained speed in two kicks
+ * near 0.075 and 0.135 s, ending +2.2 % fast (frictionless it was exact, with a third of the time step
+ * it kicked as well, and on the slope meshed twice as fine it was +15 % at 0.03 s). With the spacing
+ * (0.01 m) it ends -0.5 %. The shaking is smaller, not gone: on grids twice as fine the nodal Coulomb
+ * law under this soft block lets it grow past the sliding speed with GMM (+4.6 % at 0.07 s on this
+ * slope) and with MPM (+33 % at 0.1 s on a quad grid), so no test runs a finer grid
+ * (docs/verification-notes.md).
  *
  * PMECH_VERIFY_SMALL: the 10 degree block only, to 0.1 s with GMM and 0.05 s with RKPM (whose cubic
- * kernels make each step 20 times dearer: 0.1 s took 116 s release and over 20 minutes under ASan),
- * judged as the full test does (measured: travel 1.2e-3 (GMM) and 6.3e-3 (RKPM) of the frictionless
- * one, forces within 0.4 % and 0.6 %). The 25 degree block is left out: both
- * methods gain speed early (RKPM +2.8 % at 0.1 s, +1.6 % at 0.2 s; GMM +2.7 % and +2.2 %), so 0.1 s is
- * too short a run to judge its velocity or its forces averaged over the second half.
+ * kernels and smoothed gradients make each step far dearer: 0.1 s took 116 s release and over 20
+ * minutes under ASan), judged as the full test does (measured: travel 1.3e-3 (GMM) and 6.3e-3 (RKPM) of
+ * the frictionless one, forces within 0.04 % (GMM) and 0.6 % (RKPM)). The 25 degree block is left out:
+ * RKPM gains speed early (+2.8 % at 0.1 s, +1.6 % at 0.2 s), so 0.1 s is too short a run to judge its
+ * velocity or its forces averaged over the second half; GMM's sliding block (-0.1 % at 0.1 s) is judged
+ * by the full test only.
  */
 #include "verify_util.h"
 
@@ -35,8 +45,6 @@
 #include <string.h>
 
 static const double G = 9.81, MU = 0.3;
-/* weight of the 0.2 m x 0.06 m block of density 1000 per unit thickness */
-static const double W = 1000 * 0.2 * 0.06 * 9.81;
 static double t_end; /* of the run being made */
 static const char *dir = ".";
 
@@ -66,9 +74,10 @@ static void make_case(int deg, const char *method, pm_case *c)
     }
 }
 
-/* Run to t_end: the mean velocity along the slope, the travel of the centre of mass along it, and the
- * slope's mean normal force on the block over the second half. */
-static int run(int deg, const char *method, double *v_along, double *travel, double force[2], double *secs)
+/* Run to t_end: the mean velocity along the slope, the travel of the centre of mass along it, the
+ * slope's mean normal force on the block over the second half, and the block's weight as seeded. */
+static int run(int deg, const char *method, double *v_along, double *travel, double force[2], double *weight,
+               double *secs)
 {
     pm_case c;
     make_case(deg, method, &c);
@@ -82,6 +91,9 @@ static int run(int deg, const char *method, double *v_along, double *travel, dou
     }
     double v[2], x0[2], x[2];
     vu_body_mean(s, 0, v, x0);
+    *weight = 0;
+    for (size_t i = 0; i < s->p.n; i++)
+        *weight += s->p.mass[i] * G;
     int ok = 1, reset = 0;
     double t_reset = 0;
     while (ok && s->t < t_end - 1e-12) {
@@ -113,28 +125,16 @@ static int run(int deg, const char *method, double *v_along, double *travel, dou
 /* The block sliding on the 25 degree slope to @p t_slide: its velocity and the slope's forces. */
 static int slide(const char *method, const char *name, double t_slide)
 {
-    double v, u, fn[2], secs;
+    double v, u, fn[2], W, secs;
     char q[160];
     int ok = 1;
     t_end = t_slide;
     const double th = 25 * M_PI / 180.0, ref = G * (sin(th) - MU * cos(th)) * t_slide;
-    ok &= run(25, method, &v, &u, fn, &secs);
+    ok &= run(25, method, &v, &u, fn, &W, &secs);
     const double err = (v - ref) / ref;
-    if (strcmp(method, "gmm") == 0) {
-        /* expected to fail (see the top): reported, and an error within the tolerance fails the test,
-         * as this check must then be judged */
-        snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity at %g s (m/s), expected to fail 2 %% "
-                 "(measured +2.2 %%, a GMM polyline obstacle the same)", name, t_slide);
-        vu_report("gmsh_incline_meshfree", q, v, ref, err, -1, secs);
-        if (fabs(err) <= 0.02) {
-            printf("GMM's block now slides within 2 %%: judge this check instead of expecting it to fail\n");
-            ok = 0;
-        }
-    } else {
-        snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity along the slope at %g s (m/s)", name,
-                 t_slide);
-        ok &= vu_report("gmsh_incline_meshfree", q, v, ref, err, 0.02, secs);
-    }
+    snprintf(q, sizeof q, "%s, 25 deg Gmsh slope, mu 0.3: velocity along the slope at %g s (m/s)", name,
+             t_slide);
+    ok &= vu_report("gmsh_incline_meshfree", q, v, ref, err, 0.02, secs);
     snprintf(q, sizeof q, "%s, 25 deg: slope's normal force (N/m), mean over the second half", name);
     ok &= vu_report("gmsh_incline_meshfree", q, fn[0], W * cos(th), fn[0] / (W * cos(th)) - 1, 0.02, secs);
     snprintf(q, sizeof q, "%s, 25 deg: slope's friction force (N/m), mean over the second half", name);
@@ -155,14 +155,14 @@ int main(int argc, char **argv)
     const char *methods[] = {"gmm", "rkpm"};
     for (size_t m = 0; m < sizeof methods / sizeof methods[0]; m++) {
         const char *name = m ? "RKPM" : "GMM-MLS";
-        double v, u, fn[2], secs;
+        double v, u, fn[2], W, secs;
         char q[160];
         if (!small)
             ok &= slide(methods[m], name, t_slide);
         const double t_stick = small ? (m ? 0.05 : 0.1) : 0.2;
         const double ts = 10.0 * M_PI / 180.0, free_dist = 0.5 * G * sin(ts) * t_stick * t_stick;
         t_end = t_stick;
-        ok &= run(10, methods[m], &v, &u, fn, &secs);
+        ok &= run(10, methods[m], &v, &u, fn, &W, &secs);
         snprintf(q, sizeof q, "%s, 10 deg Gmsh slope, mu 0.3 (sticks): travel / frictionless travel at %g s", name,
                  t_stick);
         ok &= vu_report("gmsh_incline_meshfree", q, u / free_dist, 0.0, u / free_dist, 0.01, secs);
