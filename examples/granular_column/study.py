@@ -2,7 +2,8 @@
 """Run-out study of planar cohesionless column collapses against the laws of Lube et al. (2005).
 
     python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--cells-y 32] [--flip 1.0] [--fbar]
-                     [--transfer apic|xpic] [--xpic-order 5] [--material '{"key": value}'] [--jobs 2] [--keep]
+                     [--transfer apic|xpic] [--xpic-order 5] [--material '{"key": value}']
+                     [--floor fixed|coulomb] [--floor-mu 0.577] [--floor-offset 0.5] [--jobs 2] [--keep]
 
 For every aspect ratio a = H / L0 and mesh (cells per column width L0 = 1 m) it writes a case from
 case.json (the column, the grid and the end time scaled with a), runs it with one thread, and
@@ -12,6 +13,12 @@ largest volume ratio V / V0, the deposit's volume over the column's, the front's
 of the deposit's body that converge where the front does not: where the deposit is 0.1 L0 deep and
 how far the centre of mass moved. Prints one markdown row per run and writes study.csv. The frames
 are read through examples/frames.py.
+
+The floor is the case's fixed one (its nodes held in x and y) or, with --floor coulomb, a Coulomb
+interface of zero thickness at y = 0 that acts at the particles touching it: a `friction` condition on
+the grid's bottom side when --floor-offset is 0, otherwise a polyline obstacle with acts_at
+"particles" that lies that fraction of a cell above a grid line (the grid then reaches a cell and the
+offset below the floor, so that the floor cuts through cells as it would in a mesh not fitted to it).
 
 Laws (planar collapses, experiments with sand, sugar, rice and glass beads): (L_f - L0) / L0 =
 1.2 a for a < 2.3 and 1.9 a^(2/3) above; H_f / L0 = a for a < 1.15 and a^(2/5) above.
@@ -74,7 +81,22 @@ def centre_x(vtu):
     return sum(m[i] * pts[3 * i] for i in range(n)) / sum(m)
 
 
-def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, cells_y=None, xpic_order=None):
+def coulomb_floor(c, mu, offset, h, hy):
+    """Replace the fixed floor by a Coulomb interface at y = 0 (see the module's text); returns how far
+    the grid reaches below the floor."""
+    c["boundary_conditions"] = [b for b in c["boundary_conditions"] if b["boundary"] != "y_min"]
+    if offset == 0:
+        c["boundary_conditions"].append({"type": "friction", "boundary": "y_min", "coefficient": mu})
+        return 0.0
+    below = (1.0 + offset) * hy
+    width = c["grid"]["size"][0]
+    c["obstacles"] = [{"name": "floor", "type": "polyline", "points": [[-h, 0.0], [width + h, 0.0]],
+                       "material_side": "left", "friction": mu, "acts_at": "particles"}]
+    return below
+
+
+def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, cells_y=None, xpic_order=None,
+              floor=None):
     c = copy.deepcopy(base)
     if fbar:
         c["analysis"]["fbar"] = "cell"
@@ -93,6 +115,12 @@ def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, ce
     c["title"] = "granular column a = %g, h = L0/%d" % (a, cells) + (", h_y = L0/%d" % cells_y if cells_y else "")
     c["grid"]["cells"] = [math.ceil(width / h), math.ceil(height / hy)]
     c["grid"]["size"] = [c["grid"]["cells"][0] * h, c["grid"]["cells"][1] * hy]
+    if floor:
+        below = coulomb_floor(c, floor[0], floor[1], h, hy)
+        if below > 0:
+            c["grid"]["origin"] = [0.0, -below]
+            c["grid"]["cells"][1] = math.ceil((height + below) / hy)
+            c["grid"]["size"][1] = c["grid"]["cells"][1] * hy
     body = c["bodies"][0]
     body["shape"]["max"] = [L0, H]
     body["surface_y"] = H
@@ -106,13 +134,14 @@ def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, ce
 
 
 def run_one(pmech, work, a, cells, flip, keep, fbar=False, transfer=None, material=None, cells_y=None,
-            xpic_order=None):
-    name = "a%g_h%d%s%s%s%s" % (a, cells, "_y%d" % cells_y if cells_y else "", "_fbar" if fbar else "",
-                                "_" + transfer if transfer else "", "%d" % xpic_order if xpic_order else "")
+            xpic_order=None, floor=None):
+    name = "a%g_h%d%s%s%s%s%s" % (a, cells, "_y%d" % cells_y if cells_y else "", "_fbar" if fbar else "",
+                                  "_" + transfer if transfer else "", "%d" % xpic_order if xpic_order else "",
+                                  "_mu%g_off%g" % floor if floor else "")
     d = work / name
     d.mkdir(parents=True, exist_ok=True)
     base = json.loads((HERE / "case.json").read_text())
-    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y, xpic_order)
+    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y, xpic_order, floor)
     (d / "case.json").write_text(json.dumps(case, indent=1))
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
     t0 = time.time()
@@ -152,17 +181,39 @@ def main():
     ap.add_argument("--transfer", default=None, help="analysis.transfer (flip, apic or xpic)")
     ap.add_argument("--xpic-order", type=int, default=None, help="analysis.xpic_order (with --transfer xpic)")
     ap.add_argument("--material", default=None, help="JSON object of material keys to set")
+    ap.add_argument("--floor", default="fixed", choices=["fixed", "coulomb"],
+                    help="fixed: the case's floor, its nodes held; coulomb: a zero-thickness Coulomb interface "
+                         "acting at the particles that touch it")
+    ap.add_argument("--floor-mu", type=float, default=None,
+                    help="the Coulomb floor's coefficient (default: tan of the material's friction angle)")
+    ap.add_argument("--floor-offset", type=float, default=0.0,
+                    help="the Coulomb floor's height above the grid line below it, in cells, in [0, 1): 0 puts "
+                         "it on the grid's bottom side (a friction condition), more inside a cell (an obstacle)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default="study.out")
     ap.add_argument("--keep", action="store_true")
     o = ap.parse_args()
     pmech = str(Path(o.pmech).resolve())
+    floor = None
+    if o.floor == "coulomb":
+        if not 0.0 <= o.floor_offset < 1.0:
+            ap.error("--floor-offset %g: allowed [0, 1)" % o.floor_offset)
+        mu = o.floor_mu
+        if mu is None:
+            phi = json.loads(o.material or "{}").get("friction_angle")
+            if phi is None:
+                phi = json.loads((HERE / "case.json").read_text())["materials"][0]["friction_angle"]
+            mu = math.tan(math.radians(phi))
+        if mu < 0:
+            ap.error("--floor-mu %g: allowed >= 0" % mu)
+        floor = (mu, o.floor_offset)
     work = Path(o.work).resolve()
     runs = [(float(a), int(n)) for n in o.cells.split(",") for a in o.aspect.split(",")]
     rows = []
     with concurrent.futures.ThreadPoolExecutor(o.jobs) as ex:
         futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep, o.fbar, o.transfer,
-                          json.loads(o.material) if o.material else None, o.cells_y, o.xpic_order) for a, n in runs]
+                          json.loads(o.material) if o.material else None, o.cells_y, o.xpic_order, floor)
+                for a, n in runs]
         for f in concurrent.futures.as_completed(futs):
             r = f.result()
             rows.append(r)
