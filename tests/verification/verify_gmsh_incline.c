@@ -28,36 +28,12 @@ static const double G = 9.81, MU = 0.3, T_END = 0.2;
 static const double W = 1000 * 0.2 * 0.06 * 9.81;
 static const char *dir = ".";
 
-/* The case: the mesh's slope runs from (0, 0.4) down to the right; the block's bottom lies on it from
- * s = 0.1 to 0.3 along it. */
-static void make_case(int deg, pm_case *c)
-{
-    double q[4][PM_DIM];
-    vu_slope_block(deg, 0.4, 0.1, 0.2, 0.06, q);
-    char text[4096], path[1024];
-    snprintf(text, sizeof text,
-             "{ \"dimension\": 2, \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": %g,"
-             "  \"cfl\": 0.3, \"gravity\": [0, %g] },"
-             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline%d.msh\" },"
-             "  \"materials\": [ { \"name\": \"block\", \"model\": \"linear_elastic\", \"density\": 1000,"
-             "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
-             "  \"bodies\": [ { \"name\": \"block\", \"material\": \"block\", \"particles_per_cell\": 2,"
-             "    \"shape\": { \"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]] } } ],"
-             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"slope\", \"coefficient\": %g } ] }",
-             T_END, -G, deg, q[0][0], q[0][1], q[1][0], q[1][1], q[2][0], q[2][1], q[3][0], q[3][1], MU);
-    snprintf(path, sizeof path, "%s/cases/gmsh_incline.json", dir);
-    if (pm_case_load_buffer(text, strlen(text), path, c) != PM_OK) {
-        fprintf(stderr, "%s\n", pm_error_message());
-        exit(2);
-    }
-}
-
 /* Run to T_END: the mean velocity along the slope, the travel of the centre of mass along it, and the
  * slope's mean normal and tangential force on the block over the second half. */
 static vu_slope run(int deg)
 {
     pm_case c;
-    make_case(deg, &c);
+    vu_gmsh_incline_case(dir, deg, NULL, T_END, G, MU, &c);
     char label[32];
     snprintf(label, sizeof label, "%d deg", deg);
     const vu_slope r = vu_slope_run(&c, deg, PM_CONTACT_EDGES, label);

@@ -48,39 +48,13 @@ static const double G = 9.81, MU = 0.3;
 static double t_end; /* of the run being made */
 static const char *dir = ".";
 
-/* The case of verify_gmsh_incline with @p method (and its shape function): the block's bottom on the
- * slope from s = 0.1 to 0.3 along it. */
-static void make_case(int deg, const char *method, pm_case *c)
-{
-    double q[4][PM_DIM];
-    vu_slope_block(deg, 0.4, 0.1, 0.2, 0.06, q);
-    char text[4096], path[1024];
-    snprintf(text, sizeof text,
-             "{ \"dimension\": 2, \"method\": \"%s\", \"shape_function\": \"%s\","
-             "  \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\", \"end_time\": %g,"
-             "  \"cfl\": 0.3, \"gravity\": [0, %g] },"
-             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline%d.msh\" },"
-             "  \"materials\": [ { \"name\": \"block\", \"model\": \"linear_elastic\", \"density\": 1000,"
-             "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
-             "  \"bodies\": [ { \"name\": \"block\", \"material\": \"block\", \"particles_per_cell\": 2,"
-             "    \"shape\": { \"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]] } } ],"
-             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"slope\", \"coefficient\": %g } ] }",
-             method, strcmp(method, "rkpm") ? "mls" : "rk_cubic", t_end, -G, deg, q[0][0], q[0][1], q[1][0], q[1][1],
-             q[2][0], q[2][1], q[3][0], q[3][1], MU);
-    snprintf(path, sizeof path, "%s/cases/gmsh_incline.json", dir);
-    if (pm_case_load_buffer(text, strlen(text), path, c) != PM_OK) {
-        fprintf(stderr, "%s\n", pm_error_message());
-        exit(2);
-    }
-}
-
 /* Run to t_end: the mean velocity along the slope, the travel of the centre of mass along it, the
  * slope's mean normal force on the block over the second half, and the block's weight as seeded. */
 static int run(int deg, const char *method, double *v_along, double *travel, double force[2], double *weight,
                double *secs)
 {
     pm_case c;
-    make_case(deg, method, &c);
+    vu_gmsh_incline_case(dir, deg, method, t_end, G, MU, &c);
     const double th = deg * M_PI / 180.0, e[2] = {cos(th), -sin(th)};
     const double t0 = vu_now();
     pm_sim *s = vu_sim(&c, 1);

@@ -119,6 +119,32 @@ void vu_slope_block(double theta_deg, double y0, double s0, double width, double
     }
 }
 
+void vu_gmsh_incline_case(const char *dir, int deg, const char *method, double t_end, double g, double mu,
+                          pm_case *c)
+{
+    double q[4][PM_DIM];
+    vu_slope_block(deg, 0.4, 0.1, 0.2, 0.06, q);
+    char how[96] = "", text[4096], path[1024];
+    if (method)
+        snprintf(how, sizeof how, "\"method\": \"%s\", \"shape_function\": \"%s\",", method,
+                 strcmp(method, "rkpm") ? "mls" : "rk_cubic");
+    snprintf(text, sizeof text,
+             "{ \"dimension\": 2, %s \"analysis\": { \"type\": \"explicit\", \"scheme\": \"musl\","
+             "  \"end_time\": %g, \"cfl\": 0.3, \"gravity\": [0, %g] },"
+             "  \"grid\": { \"type\": \"gmsh\", \"file\": \"gmsh_incline%d.msh\" },"
+             "  \"materials\": [ { \"name\": \"block\", \"model\": \"linear_elastic\", \"density\": 1000,"
+             "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
+             "  \"bodies\": [ { \"name\": \"block\", \"material\": \"block\", \"particles_per_cell\": 2,"
+             "    \"shape\": { \"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]] } } ],"
+             "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"slope\", \"coefficient\": %g } ] }",
+             how, t_end, -g, deg, q[0][0], q[0][1], q[1][0], q[1][1], q[2][0], q[2][1], q[3][0], q[3][1], mu);
+    snprintf(path, sizeof path, "%s/cases/gmsh_incline.json", dir);
+    if (pm_case_load_buffer(text, strlen(text), path, c) != PM_OK) {
+        fprintf(stderr, "%s\n", pm_error_message());
+        exit(2);
+    }
+}
+
 vu_slope vu_slope_run(const pm_case *c, double theta_deg, pm_contact_kind kind, const char *label)
 {
     const double th = theta_deg * M_PI / 180.0, e[PM_DIM] = {cos(th), -sin(th)}, end = c->analysis.end_time;

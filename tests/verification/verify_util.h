@@ -63,6 +63,16 @@ int vu_run_each(pm_sim *s, double end, int (*each)(pm_sim *s, void *ctx), void *
  */
 void vu_slope_block(double theta_deg, double y0, double s0, double width, double height, double q[4][PM_DIM]);
 
+/**
+ * The block of the Gmsh incline tests loaded into @p c: 0.2 m x 0.06 m, density 1000, linear elastic
+ * (E = 1e7, nu = 0.3), its bottom on the slope of @p dir/gmsh_incline<deg>.msh (the 1-D group "slope",
+ * running down to the right from (0, 0.4)) from s = 0.1 to 0.3 along it, Coulomb friction @p mu there,
+ * gravity -@p g, explicit MUSL at CFL 0.3 to @p t_end. @p method NULL: MPM (the default); otherwise
+ * that method ("gmm" with MLS, "rkpm" with rk_cubic). Exits 2 if the case does not load.
+ */
+void vu_gmsh_incline_case(const char *dir, int deg, const char *method, double t_end, double g, double mu,
+                          pm_case *c);
+
 /** What a block sliding down a slope did over a run (vu_slope_run). */
 typedef struct vu_slope {
     double v_along;  /**< body 0's mean velocity along the slope at the end */
