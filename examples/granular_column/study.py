@@ -3,7 +3,8 @@
 
     python3 study.py PMECH [--aspect 0.5,1,2,4,8] [--cells 10,20] [--cells-y 32] [--flip 1.0] [--fbar]
                      [--transfer apic|xpic] [--xpic-order 5] [--material '{"key": value}']
-                     [--floor fixed|coulomb] [--floor-mu 0.577] [--floor-offset 0.5] [--jobs 2] [--keep]
+                     [--floor fixed|coulomb] [--floor-mu 0.577] [--floor-offset 0.5] [--end-time 0.6]
+                     [--interval 0.03] [--jobs 2] [--keep]
 
 For every aspect ratio a = H / L0 and mesh (cells per column width L0 = 1 m) it writes a case from
 case.json (the column, the grid and the end time scaled with a), runs it with one thread, and
@@ -96,7 +97,7 @@ def coulomb_floor(c, mu, offset, h, hy):
 
 
 def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, cells_y=None, xpic_order=None,
-              floor=None):
+              floor=None, end_time=None, interval=None):
     c = copy.deepcopy(base)
     if fbar:
         c["analysis"]["fbar"] = "cell"
@@ -105,7 +106,12 @@ def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, ce
     if xpic_order:
         c["analysis"]["xpic_order"] = xpic_order
     if material:
-        c["materials"][0].update(material)
+        mat = c["materials"][0]
+        if "model" in material and material["model"] != mat["model"]:
+            # another model takes only the keys every model shares; its own come from `material`
+            mat = {k: mat[k] for k in ("name", "density", "youngs_modulus", "poisson_ratio")}
+            c["materials"][0] = mat
+        mat.update(material)
     L0, h = 1.0, 1.0 / cells
     hy = 1.0 / cells_y if cells_y else h
     H = a * L0
@@ -125,23 +131,23 @@ def make_case(base, a, cells, flip, fbar=False, transfer=None, material=None, ce
     body["shape"]["max"] = [L0, H]
     body["surface_y"] = H
     # free fall of the column's top plus the spreading of the deposit, with a margin to come to rest
-    c["analysis"]["end_time"] = round(3.0 * math.sqrt(H / 9.81) + 1.5 * math.sqrt(reach / 9.81) + 0.5, 3)
+    c["analysis"]["end_time"] = end_time or round(3.0 * math.sqrt(H / 9.81) + 1.5 * math.sqrt(reach / 9.81) + 0.5, 3)
     if flip is not None:
         c["analysis"]["flip"] = flip
-    c["output"] = {"directory": "out", "interval": round(c["analysis"]["end_time"] / 20, 4)}
+    c["output"] = {"directory": "out", "interval": interval or round(c["analysis"]["end_time"] / 20, 4)}
     c.pop("probes", None)
     return c
 
 
 def run_one(pmech, work, a, cells, flip, keep, fbar=False, transfer=None, material=None, cells_y=None,
-            xpic_order=None, floor=None):
+            xpic_order=None, floor=None, end_time=None, interval=None):
     name = "a%g_h%d%s%s%s%s%s" % (a, cells, "_y%d" % cells_y if cells_y else "", "_fbar" if fbar else "",
                                   "_" + transfer if transfer else "", "%d" % xpic_order if xpic_order else "",
                                   "_mu%g_off%g" % floor if floor else "")
     d = work / name
     d.mkdir(parents=True, exist_ok=True)
     base = json.loads((HERE / "case.json").read_text())
-    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y, xpic_order, floor)
+    case = make_case(base, a, cells, flip, fbar, transfer, material, cells_y, xpic_order, floor, end_time, interval)
     (d / "case.json").write_text(json.dumps(case, indent=1))
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
     t0 = time.time()
@@ -180,7 +186,16 @@ def main():
     ap.add_argument("--fbar", action="store_true", help="analysis.fbar = cell")
     ap.add_argument("--transfer", default=None, help="analysis.transfer (flip, apic or xpic)")
     ap.add_argument("--xpic-order", type=int, default=None, help="analysis.xpic_order (with --transfer xpic)")
-    ap.add_argument("--material", default=None, help="JSON object of material keys to set")
+    ap.add_argument("--material", default=None,
+                    help="JSON object of material keys to set; with a \"model\" other than the case's, the "
+                         "case's model keys are dropped (density and the elastic pair kept), e.g. "
+                         "'{\"model\": \"viscoplastic_drucker_prager\", \"friction_angle\": 25.11, "
+                         "\"viscosity\": 820}'")
+    ap.add_argument("--end-time", type=float, default=None,
+                    help="analysis.end_time (s); default: the fall and spreading times of the column, scaled "
+                         "with a (a shorter run measures the failure, not the deposit)")
+    ap.add_argument("--interval", type=float, default=None,
+                    help="output interval (s); default: a twentieth of the end time (band.py wants finer frames)")
     ap.add_argument("--floor", default="fixed", choices=["fixed", "coulomb"],
                     help="fixed: the case's floor, its nodes held; coulomb: a zero-thickness Coulomb interface "
                          "acting at the particles that touch it")
@@ -212,7 +227,8 @@ def main():
     rows = []
     with concurrent.futures.ThreadPoolExecutor(o.jobs) as ex:
         futs = [ex.submit(run_one, pmech, work, a, n, o.flip, o.keep, o.fbar, o.transfer,
-                          json.loads(o.material) if o.material else None, o.cells_y, o.xpic_order, floor)
+                          json.loads(o.material) if o.material else None, o.cells_y, o.xpic_order, floor,
+                          o.end_time, o.interval)
                 for a, n in runs]
         for f in concurrent.futures.as_completed(futs):
             r = f.result()
