@@ -6,11 +6,9 @@
 Each RUN_OUT_DIR is a run's output directory (the one holding particles.pvd, e.g. study.py's
 `a0.5_h16/out` kept with --keep); the cell size is read from the case.json beside it. For every pair
 of consecutive frames whose middle lies in [t0, t1] it takes each particle's plastic strain increment
-(matched by id) and the plastic dissipation rate q * d(eps_p)/dt * V (q from the later frame, so
+(matched by id) and its plastic dissipation rate q d(eps_p)/dt V (q from the later frame, so
 stress-free points at the apex, which collect plastic strain without carrying stress, do not count),
-and reports, in units of the cell size h:
-
-The rates are summed over the grid's cells first (see `cells`). Then:
+sums the rates over the grid's cells (see `cells`) and reports, per pair:
 
 - w_half: the smallest area of cells that carries half the total dissipation rate, divided by the
   length of the main failure surface (taken as H / sin 60 deg, from the floor to the column's top at
@@ -18,16 +16,17 @@ The rates are summed over the grid's cells first (see `cells`). Then:
   gives the same w_half on every mesh; a zone of a fixed physical width gives w_half doubling with
   every halving of h.
 - fwhm: along the row of cells at each given height (y / H), the width in x over which the
-  dissipation rate per area stays above half its peak, around the peak (linear between cell centres,
-  so a zone of one cell shows as 1), divided by h (a horizontal cut: the zone's normal width is this times sin of its inclination).
+  dissipation rate per area stays above half its peak, around the peak (linear between cell
+  centres, so a zone of one cell shows as 1), divided by h. A horizontal cut: the zone's normal
+  width is this times the sine of its inclination.
+- the share of the dissipation in the lowest row of cells (the basal layer) and the total
+  dissipation rate (W per metre of depth), which a well-posed problem would give the same on every
+  fine enough mesh.
 
-At the end, one line per run: the mean dissipation rate and the medians of w_half and of every
-cut's fwhm over the pairs, in h and in L0, and how many points are stress-free (p <= 0: the
-cohesionless models' apex) and what share of the plastic strain rate they carry: a rate term that
-scales with the pressure, as Perzyna's overstress m p (d eps_p/dt)/gamma and mu(I)'s do, cannot act
-there. Also the share of the dissipation in the lowest row of cells (the basal layer) and the total
-dissipation rate (W per metre of depth) of each pair, which a well-posed problem would
-give the same on every fine enough mesh.
+At the end, one line per run: the mean dissipation rate, the medians of w_half and of every cut's
+fwhm over the pairs, in h and in L0, and how many points are stress-free (p <= 0: the cohesionless
+models' apex) and what share of the plastic strain rate they carry: a rate term that scales with the
+pressure, as Perzyna's overstress m p (d eps_p/dt)/gamma and mu(I)'s do, cannot act there.
 """
 import argparse
 import json
