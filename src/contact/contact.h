@@ -197,6 +197,8 @@ typedef struct pm_contact_node {
     int held;                /**< 1: the nodal law acted on it in this step's pm_contact_apply() (reset by
                                   pm_contact_detect()) */
     double vn_held;          /**< then: its normal velocity relative to the surface after the law */
+    double hold;             /**< the share of vn_held the re-projected velocity takes (1; a node of a node set
+                                  lighter than a particle touching there: its mass over the particle's) */
     int corner;              /**< 1: the node is a Gmsh wall's re-entrant corner (a tool's tip), whose normal
                                   is that of the face the nearest material lies squarely off, chosen by
                                   every pm_contact_gaps() */
@@ -225,6 +227,8 @@ typedef struct pm_contact_point {
     double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
     double mass;             /**< obstacle: the touching particle's mass, the least a node answers its
                                   impulse with (node set: 0, every node with its own) */
+    double pmass;            /**< node set: the touching particle's mass; a node lighter than it takes a share
+                                  of the point in proportion (obstacle: 0) */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
     size_t particle;         /**< the particle whose foot it is */
