@@ -224,7 +224,10 @@ typedef struct pm_contact_point {
     int32_t entry[PM_CONTACT_POINT_NODES]; /**< their entries in pm_contact::node (-1: none) */
     double w[PM_CONTACT_POINT_NODES];      /**< their shape functions at the point (summing to 1) */
     double normal[PM_DIM];   /**< into the surface at the point */
-    double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
+    double allow;            /**< how far it may approach the surface in the step (divided by dt in the law):
+                                  its gap less its rest, >= 0 */
+    double rest;             /**< node set: its gap when it first touched, if it overlapped then (else 0): it
+                                  may come back to that overlap, not only to a gap of zero */
     double mass;             /**< obstacle: the touching particle's mass, the least a node answers its
                                   impulse with (node set: 0, every node with its own) */
     double pmass;            /**< node set: the touching particle's mass; a node lighter than it takes a share
