@@ -272,6 +272,7 @@ typedef struct pm_contact {
                                   (the end of pt[]) and how many, their impulses to start the sweeps from */
     size_t pt_cursor;        /**< the next of them to match (pm_contact_gaps) */
     double pt_dt;            /**< the step the points' impulses were found for (0: none yet) */
+    size_t *pt_renum;        /**< pt_cap: scratch of pm_contact_renumber() */
     size_t pt_solves;        /**< explicit applications that had touching points, since creation */
     size_t pt_sweeps;        /**< the Gauss-Seidel sweeps those took, summed */
 } pm_contact;
@@ -371,6 +372,13 @@ int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double w
  * node positions and the cell size. Call once after pm_contact_create(). @return PM_OK, PM_ENOMEM
  */
 int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap);
+
+/**
+ * The particles were renumbered (@p perm[j]: the old index of the particle now at j, for @p n
+ * particles): the touching points follow them, so that the next pm_contact_gaps() gives each particle's
+ * point its own impulses and rest (pm_contact_point::rest) again.
+ */
+void pm_contact_renumber(pm_contact *ct, const uint32_t *perm, size_t n);
 
 /** Free (NULL is fine). */
 void pm_contact_destroy(pm_contact *ct);
