@@ -47,7 +47,9 @@
  *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
  *                       predictor): at the entries of nodal-law surfaces that the law held in
  *                       this step, the normal velocity the law left them (approaching or
- *                       separating: the particles moved with it, and the strain must agree); at the
+ *                       separating: the particles moved with it, and the strain must agree; a node
+ *                       lighter than the particles touching there, whose end velocity is not the
+ *                       material's, only its mass's share of it, pm_contact_node::hold); at the
  *                       other entries in touch (gap <= 0), the approaching normal velocity only (none
  *                       at the entries of a node set acting at touching points: the law left them
  *                       free); no
@@ -78,9 +80,10 @@
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
  * alone. Across steps, explicit runs keep the touching points' impulses (the next step's sweeps start
- * from them, friction.c) and implicit runs the force of every node touching a surface (held; a node held
- * by both faces of a Gmsh wall's inward corner keeps one per face, pm_contact_implicit_history);
- * checkpoints store both.
+ * from them, friction.c) and their rests (the overlap each first touched with, which it may come back
+ * to), following their particles through sorts (pm_contact_renumber), and implicit runs the force of
+ * every node touching a surface (held; a node held by both faces of a Gmsh wall's inward corner keeps
+ * one per face, pm_contact_implicit_history); checkpoints store both.
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
