@@ -24,8 +24,9 @@
  * portions settled 2.4-2.9 times too high and was still compacting 3.7 s after the last portion; with
  * the loosest state alone the sprayed points landed as a skeleton at a third of the density, 3.3 times
  * too high. Measured with this version: 3.9 % over the reference (one point, 0.1 % of the mass, in
- * flight and left out; 3.0 % before the touching points' rests and light nodes; 0.3 % before the friction sides' sweeps stopped on a relative measure and
- * started from the last step's impulses, 3.7 % with them converged to 1e-6 instead of 1e-4: the
+ * flight and left out; 3.0 % before the touching points' rests and light nodes; 0.3 % before the
+ * friction sides' sweeps stopped on a relative measure and started from the last step's impulses,
+ * 3.7 % with them converged to 1e-6 instead of 1e-4: the
  * impacts make the run's details sensitive to rounding-level changes; with the node-by-node friction
  * law on the sides, 2.2 %); the densest layer (the bottom 0.1 m, 0.4 % looser than its stress implies,
  * 2 % and 4 % denser before: the impacts' overshoot, which the density from positions does not undo) is
@@ -37,7 +38,8 @@
  * carry under 2 % of the weight, so this is the weight less Janssen's wall friction; within 4 %
  * (measured 2.2 %; 1.5 % before the touching points' rests and light nodes, 0.9 % before that): the
  * deposit still compacts slowly (its top layer settles at centimetres per second), and the points still
- * moving in the window (the last portion landed 1.3 s before) add their deceleration. A deposit hanging on the wall, or one still falling, is off by more.
+ * moving in the window (the last portion landed 1.3 s before) add their deceleration. A deposit hanging
+ * on the wall, or one still falling, is off by more.
  *
  * Wall: Janssen's wall pressure K sigma_v needs a level fill sliding on its walls; this deposit heaps
  * towards the wall and sticks, so the wall's normal force over K rho g H_w^2 / 2 (H_w the height at the
