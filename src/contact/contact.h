@@ -80,8 +80,8 @@
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
  * alone. Across steps, explicit runs keep the touching points' impulses (the next step's sweeps start
- * from them, friction.c) and their rests (the overlap each first touched with, which it may come back
- * to), following their particles through sorts (pm_contact_renumber), and implicit runs the force of
+ * from them, friction.c), following their particles through sorts (pm_contact_renumber), and implicit
+ * runs the force of
  * every node touching a surface (held; a node held by both faces of a Gmsh wall's inward corner keeps
  * one per face, pm_contact_implicit_history); checkpoints store both.
  *
@@ -227,10 +227,7 @@ typedef struct pm_contact_point {
     int32_t entry[PM_CONTACT_POINT_NODES]; /**< their entries in pm_contact::node (-1: none) */
     double w[PM_CONTACT_POINT_NODES];      /**< their shape functions at the point (summing to 1) */
     double normal[PM_DIM];   /**< into the surface at the point */
-    double allow;            /**< how far it may approach the surface in the step (divided by dt in the law):
-                                  its gap less its rest, >= 0 */
-    double rest;             /**< node set: its gap when it first touched, if it overlapped then (else 0): it
-                                  may come back to that overlap, not only to a gap of zero */
+    double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
     double mass;             /**< obstacle: the touching particle's mass, the least a node answers its
                                   impulse with (node set: 0, every node with its own) */
     double pmass;            /**< node set: the touching particle's mass; a node lighter than it takes a share
@@ -378,8 +375,8 @@ int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap);
 
 /**
  * The particles were renumbered (@p perm[j]: the old index of the particle now at j, for @p n
- * particles): the touching points follow them, so that the next pm_contact_gaps() gives each particle's
- * point its own impulses and rest (pm_contact_point::rest) again.
+ * particles): the touching points follow them, so that the next pm_contact_gaps() starts each particle's
+ * point from its own impulses again.
  */
 void pm_contact_renumber(pm_contact *ct, const uint32_t *perm, size_t n);
 

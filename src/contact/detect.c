@@ -138,12 +138,12 @@ static inline double half_size(const pm_particles *p, size_t i)
  * the largest one (a particle midway between two nodes sets both). */
 static const double VOTE = 0.5;
 
-/* The impulses particle i's point on surface k had in the last step, and its rest, if it had one (else
- * zero impulses; returns whether it had). Both
+/* The impulses particle i's point on surface k had in the last step, if it had one (else zero). Both
  * lists are in the same order, surface by surface and particle by particle, so one cursor runs through
- * the last one. A particle renumbered since (sinks, sources) may take another's impulses: they only
- * start the sweeps, which converge from any start. */
-static int last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *q)
+ * the last one (the points follow their particles through sorts, pm_contact_renumber). A particle
+ * renumbered by sinks or sources may take another's impulses: they only start the sweeps, which
+ * converge from any start. */
+static void last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *q)
 {
     q->lam_n = 0.0;
     for (int d = 0; d < PM_DIM; d++)
@@ -159,10 +159,7 @@ static int last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *q
         q->lam_n = ct->pt[c].lam_n;
         for (int d = 0; d < PM_DIM; d++)
             q->lam_t[d] = ct->pt[c].lam_t[d];
-        q->rest = ct->pt[c].rest;
-        return 1;
     }
-    return 0;
 }
 
 /* A point where particle i (mass pmass) may touch node-set surface k at its foot on the plane, gap above
@@ -194,11 +191,7 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, size_t i, double sd, 
         }
     }
     pm_contact_point *q = &ct->pt[ct->n_pt];
-    /* A point keeps the overlap it first touched with (bodies seeded flush with a side: the circles of
-     * points at Gauss positions reach 0.039 h past it). Allowed back only to a gap of zero, the bottom of a
-     * block that rings on its side rose by that overlap and stayed there (0.19 mm on h = 0.005 m). */
-    if (!last_impulses(ct, k, i, q))
-        q->rest = gap < 0 ? gap : 0.0;
+    last_impulses(ct, k, i, q);
     ct->n_pt++;
     q->particle = i;
     q->surface = (int32_t)k;
@@ -211,7 +204,7 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, size_t i, double sd, 
     q->node[1] = b >= 0 ? ct->node[b].node : -1;
     q->entry[1] = b;
     q->w[1] = b >= 0 ? s : 0.0;
-    q->allow = gap > q->rest ? gap - q->rest : 0.0;
+    q->allow = gap > 0 ? gap : 0.0; /* divided by dt in the law */
     q->mass = 0.0;
     q->pmass = pmass;
 }
@@ -228,7 +221,6 @@ static void add_touch(pm_contact *ct, size_t k, size_t ip, const pm_stencil *st,
     }
     pm_contact_point *q = &ct->pt[ct->n_pt];
     last_impulses(ct, k, ip, q);
-    q->rest = 0.0;
     q->particle = ip;
     int m = 0;
     for (int j = 0; j < st->n; j++) {

@@ -39,12 +39,6 @@ int pm_ck_write_points(const ck_file *f, hid_t g, const pm_contact *ct)
             row[3 + d] = pt->lam_t[d];
     }
     int rc = ck_write(f, g, "points", CK_DOUBLE, a, ct->n_pt, POINT_COLS);
-    /* each point's rest, the overlap it may come back to (contact.h), apart: a checkpoint written before
-     * points kept one reads as rests of zero */
-    for (size_t q = 0; !rc && q < ct->n_pt; q++)
-        a[q] = ct->pt[q].rest;
-    if (!rc)
-        rc = ck_write(f, g, "points_rest", CK_DOUBLE, a, ct->n_pt, 1);
     free(a);
     return rc ? rc : put_double(f, g, "points_dt", ct->pt_dt);
 }
@@ -111,13 +105,7 @@ int pm_ck_read_points(const ck_file *f, const char *path, hid_t g, pm_contact *c
         pt->lam_n = row[2];
         for (int d = 0; d < PM_DIM; d++)
             pt->lam_t[d] = row[3 + d];
-        pt->rest = 0.0;
     }
-    size_t rests = 0;
-    if (!rc && H5Lexists(g, "points_rest", H5P_DEFAULT) > 0 && !(rc = ck_rows(f, g, "points_rest", &rests)) &&
-        rests == rows && !(rc = ck_read(f, g, "points_rest", CK_DOUBLE, a, rows, 1)))
-        for (size_t q = 0; q < rows; q++)
-            ct->pt[q].rest = a[q];
     free(a);
     if (!rc)
         ct->n_pt = rows;
