@@ -7,8 +7,9 @@
         dt 2e-5 s, below its stable step of 2.3e-5 s), dt2 (drop5 at the paper's dt = 2e-5 s: the
         step fine runs at, on case.json's 50 mm cells), drop5x30 (drop5 with 30 portions, t = 0-5.8 s, run
         to 7 s), finex30 (fine with those 30 portions), drop1x30
-        (drop1 with those 30 portions)
+        (drop1 with those 30 portions), drop5x60 (drop5 with 60 portions, t = 0-11.8 s, run to 13 s)
     python3 examples/silo_filling/compaction.py measure RUN_DIR [RUN_DIR ...]
+    python3 examples/silo_filling/compaction.py points RUN_DIR [RUN_DIR ...]
 
 The three volumes (m^2 per metre of depth) of the deposit's points (those joined to the floor, as
 figures.py finds them): from its surface (the area under the 50 mm columns' tops: what the positions
@@ -27,7 +28,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from frames import last_frame, read_vtu  # noqa: E402
+from frames import frames, last_frame, read_vtu  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import figures as figs  # noqa: E402
@@ -39,7 +40,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def make_case(variant, out):
     c = json.load(open(os.path.join(HERE, "case.json")))
     c = copy.deepcopy(c)
-    c["title"] = "Silo filling, ten portions (%s): where the deposit's over-compaction comes from" % variant
+    c["title"] = "Silo filling, a short fill (%s): where the deposit's over-compaction comes from" % variant
     c["analysis"]["end_time"] = 3.5
     src = c["sources"][0]
     src["until"] = 1.8
@@ -54,13 +55,15 @@ def make_case(variant, out):
         c["analysis"]["dt"] = 2.0e-5
     elif variant == "dt2":
         c["analysis"]["dt"] = 2.0e-5
+    elif variant == "drop5x60":
+        src["until"], c["analysis"]["end_time"] = 11.8, 13.0
     elif variant in ("drop5x30", "finex30"):
         src["until"], c["analysis"]["end_time"] = 5.8, 7.0
         if variant == "finex30":
             c["grid"]["cells"] = [42, 208]
             c["analysis"]["dt"] = 2.0e-5
     elif variant != "drop5":
-        sys.exit("unknown variant %s (drop5, drop1, fine, dt2, drop5x30, finex30, drop1x30)" % variant)
+        sys.exit("unknown variant %s (drop5, drop1, fine, dt2, drop5x30, finex30, drop1x30, drop5x60)" % variant)
     with open(out, "w") as fh:
         json.dump(c, fh, indent=1)
 
@@ -111,11 +114,100 @@ def measure(run):
               "mean pressure: " + ", ".join("%.3f" % ((layers[k][0] / (0.1 * figs.WIDTH)) * (1 + e_of(layers[k][2] / layers[k][0])) / RHO_S) for k in full))
 
 
+def positions_density(f, case):
+    """Each point's density from the positions of all points, as the solver computes it before a step
+    (src/mesh/density.c on a structured quad grid): nodal mass sum N_I m over the integral of N_I over
+    the cells that hold a point, interpolated back to the point."""
+    g = case["grid"]
+    (ox, oy), (sx, sy), (nx, ny) = g.get("origin", [0.0, 0.0]), g["size"], g["cells"]
+    hx, hy = sx / nx, sy / ny
+    n, pts, m = f["n"], f["Points"], f["mass"]
+    mass_node, occupied, stencil = {}, set(), []
+    for i in range(n):
+        cx = min(max(int((pts[3 * i] - ox) / hx), 0), nx - 1)
+        cy = min(max(int((pts[3 * i + 1] - oy) / hy), 0), ny - 1)
+        a, b = (pts[3 * i] - ox) / hx - cx, (pts[3 * i + 1] - oy) / hy - cy
+        st = [((cx, cy), (1 - a) * (1 - b)), ((cx + 1, cy), a * (1 - b)), ((cx + 1, cy + 1), a * b),
+              ((cx, cy + 1), (1 - a) * b)]
+        stencil.append(st)
+        occupied.add((cx, cy))
+        for node, w in st:
+            mass_node[node] = mass_node.get(node, 0.0) + w * m[i]
+    den = {}
+    for cx, cy in occupied:
+        for node in ((cx, cy), (cx + 1, cy), (cx + 1, cy + 1), (cx, cy + 1)):
+            den[node] = den.get(node, 0.0) + 0.25 * hx * hy
+    return [sum(w * mass_node[node] / den[node] for node, w in st) for st in stencil]
+
+
+def p_of(ev):
+    """The granular law's elastic pressure at the volumetric strain ev (eps_v held at e_max)."""
+    ev = min(ev, math.log((1 + EMAX) / (1 + E0)))
+    return P0 * math.exp((1 + E0) / KAPPA * (1 - math.exp(ev)))
+
+
+def points(run):
+    """Per point of the deposit, at every frame: the volumetric strain the granular law holds (its state,
+    eps_v), the one the positions' density gives, ln(rho_ref / rho_positions), and ln det F, with the
+    pressure; the state looser than the positions (eps_v above theirs) is crowding that costs no pressure."""
+    case = json.load(open(os.path.join(run, "run.json")))["case"]
+    case = json.load(open(case if os.path.isabs(case) else os.path.join(os.getcwd(), case)))
+    rho_ref = case["materials"][0]["density"]
+    print("%s: per frame, over the deposit's points (mass-weighted means; eps: volumetric strains)" % run)
+    print("  t (s) | points | eps_v state | eps positions | ln det F | state - positions | share state "
+          "looser by > 0.01 | by < -0.01 | mean p (kPa) | p at the positions' mean eps (kPa) | share p < 1 kPa")
+    last = None
+    for t, path in frames(run):
+        f = read_vtu(path)
+        if "material_state" not in f or f["n"] == 0:
+            continue
+        n, pts, hs, m = f["n"], f["Points"], f["half_size"], f["mass"]
+        ns = len(f["material_state"]) // n
+        inside = figs.connected(n, pts, hs)
+        rho = positions_density(f, case)
+        rows = []
+        for i in range(n):
+            if inside[i] and rho[i] > 0:
+                rows.append((m[i], f["material_state"][ns * i + 1], math.log(rho_ref / rho[i]),
+                             f["volumetric_strain"][i], f["pressure"][i], pts[3 * i + 1]))
+        if not rows:
+            continue
+        M = sum(r[0] for r in rows)
+        mean = [sum(r[0] * r[k] for r in rows) / M for k in range(1, 5)]
+        looser = sum(r[0] for r in rows if r[1] - r[2] > 0.01) / M
+        denser = sum(r[0] for r in rows if r[1] - r[2] < -0.01) / M
+        low = sum(r[0] for r in rows if r[4] < 1000) / M
+        print("  %5.2f | %5d | %.4f | %.4f | %.4f | %+.4f | %.2f | %.2f | %.2f | %.2f | %.2f"
+              % (t, len(rows), mean[0], mean[1], mean[2], mean[0] - mean[1], looser, denser, mean[3] / 1e3,
+                 p_of(mean[1]) / 1e3, low))
+        last = (t, rows)
+    if not last:
+        sys.exit("%s: no frame carries material_state" % run)
+    t, rows = last
+    print("  at t = %.2f s per 0.1 m layer from the floor: mass-weighted eps_v state, eps positions, ln det F, "
+          "mean p and the law's p at each mean eps (kPa), share of points with p < 1 kPa, spread (standard "
+          "deviation) of eps_v and of eps positions" % t)
+    layers = {}
+    for r in rows:
+        layers.setdefault(int(r[5] / 0.1), []).append(r)
+    for k in sorted(layers):
+        q = layers[k]
+        M = sum(r[0] for r in q)
+        ev, ep, ef, pm = (sum(r[0] * r[j] for r in q) / M for j in (1, 2, 3, 4))
+        sv, sp = (math.sqrt(sum(r[0] * (r[j] - c) ** 2 for r in q) / M) for j, c in ((1, ev), (2, ep)))
+        print("  %.1f-%.1f m: %5d points | %.4f | %.4f | %.4f | p %.2f, p(state) %.2f, p(positions) %.2f | %.2f"
+              " | %.4f %.4f" % (0.1 * k, 0.1 * k + 0.1, len(q), ev, ep, ef, pm / 1e3, p_of(ev) / 1e3,
+                                 p_of(ep) / 1e3, sum(r[0] for r in q if r[4] < 1000) / M, sv, sp))
+
+
 if __name__ == "__main__":
     if len(sys.argv) == 4 and sys.argv[1] == "case":
         make_case(sys.argv[2], sys.argv[3])
     elif len(sys.argv) >= 3 and sys.argv[1] == "measure":
         for r in sys.argv[2:]:
             measure(r)
+    elif len(sys.argv) >= 3 and sys.argv[1] == "points":
+        for r in sys.argv[2:]:
+            points(r)
     else:
         sys.exit(__doc__)

@@ -40,6 +40,7 @@ void pm_contact_destroy(pm_contact *ct)
     free(ct->pt);
     free(ct->side_nbr);
     free(ct->pt_impulse);
+    free(ct->pt_renum);
     free(ct);
 }
 
@@ -358,8 +359,9 @@ int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap)
     ct->pt = malloc(want * sizeof *ct->pt);
     ct->side_nbr = malloc(2 * (ct->n_fixed ? ct->n_fixed : 1) * sizeof *ct->side_nbr);
     ct->pt_impulse = malloc(PM_CONTACT_PT_ROW * rows * sizeof *ct->pt_impulse);
+    ct->pt_renum = malloc(want * sizeof *ct->pt_renum);
     side_key *key = malloc((ct->n_fixed ? ct->n_fixed : 1) * sizeof *key);
-    if (!ct->pt || !ct->side_nbr || !ct->pt_impulse || !key) {
+    if (!ct->pt || !ct->side_nbr || !ct->pt_impulse || !ct->pt_renum || !key) {
         free(key);
         return pm_error_set(PM_ENOMEM, "out of memory for the contact points");
     }
@@ -384,4 +386,42 @@ int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap)
     ct->pt_cap = want;
     ct->node_x = g->x;
     return PM_OK;
+}
+
+/* Points of one surface in the order pm_contact_gaps() makes and matches them in: by particle. */
+static int by_particle(const void *a, const void *b)
+{
+    const size_t i = ((const pm_contact_point *)a)->particle, j = ((const pm_contact_point *)b)->particle;
+    return (i > j) - (i < j);
+}
+
+void pm_contact_renumber(pm_contact *ct, const uint32_t *perm, size_t n)
+{
+    if (!ct || !ct->n_pt)
+        return;
+    /* each surface's points (one run of the list, in the order of the surfaces' entries) are in order of
+     * their old particles: every new index finds its particle's point, if it has one, by bisection */
+    for (size_t q = 0; q < ct->n_pt; q++)
+        ct->pt_renum[q] = ct->pt[q].particle;
+    for (size_t lo = 0, hi; lo < ct->n_pt; lo = hi) {
+        for (hi = lo; hi < ct->n_pt && ct->pt[hi].surface == ct->pt[lo].surface; hi++)
+            ;
+        for (size_t j = 0; j < n; j++) {
+            size_t a = lo, b = hi;
+            while (a < b) {
+                const size_t mid = a + (b - a) / 2;
+                if (ct->pt[mid].particle < perm[j])
+                    a = mid + 1;
+                else
+                    b = mid;
+            }
+            if (a < hi && ct->pt[a].particle == perm[j])
+                ct->pt_renum[a] = j;
+        }
+    }
+    for (size_t lo = 0, hi; lo < ct->n_pt; lo = hi) {
+        for (hi = lo; hi < ct->n_pt && ct->pt[hi].surface == ct->pt[lo].surface; hi++)
+            ct->pt[hi].particle = ct->pt_renum[hi];
+        qsort(ct->pt + lo, hi - lo, sizeof *ct->pt, by_particle);
+    }
 }

@@ -47,7 +47,9 @@
  *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
  *                       predictor): at the entries of nodal-law surfaces that the law held in
  *                       this step, the normal velocity the law left them (approaching or
- *                       separating: the particles moved with it, and the strain must agree); at the
+ *                       separating: the particles moved with it, and the strain must agree; a node
+ *                       lighter than the particles touching there, whose end velocity is not the
+ *                       material's, only its mass's share of it, pm_contact_node::hold); at the
  *                       other entries in touch (gap <= 0), the approaching normal velocity only (none
  *                       at the entries of a node set acting at touching points: the law left them
  *                       free); no
@@ -78,9 +80,10 @@
  *
  * State: everything is plain arrays in the object, and an obstacle's place is a function of time
  * alone. Across steps, explicit runs keep the touching points' impulses (the next step's sweeps start
- * from them, friction.c) and implicit runs the force of every node touching a surface (held; a node held
- * by both faces of a Gmsh wall's inward corner keeps one per face, pm_contact_implicit_history);
- * checkpoints store both.
+ * from them, friction.c), following their particles through sorts (pm_contact_renumber), and implicit
+ * runs the force of
+ * every node touching a surface (held; a node held by both faces of a Gmsh wall's inward corner keeps
+ * one per face, pm_contact_implicit_history); checkpoints store both.
  *
  * Force output: every apply starts every surface's resultant from zero and adds m dv / dt of the
  * law (not the prescribed components that follow it) at each of its nodes: the force the surface
@@ -197,6 +200,8 @@ typedef struct pm_contact_node {
     int held;                /**< 1: the nodal law acted on it in this step's pm_contact_apply() (reset by
                                   pm_contact_detect()) */
     double vn_held;          /**< then: its normal velocity relative to the surface after the law */
+    double hold;             /**< the share of vn_held the re-projected velocity takes (1; a node of a node set
+                                  lighter than a particle touching there: its mass over the particle's) */
     int corner;              /**< 1: the node is a Gmsh wall's re-entrant corner (a tool's tip), whose normal
                                   is that of the face the nearest material lies squarely off, chosen by
                                   every pm_contact_gaps() */
@@ -225,6 +230,8 @@ typedef struct pm_contact_point {
     double allow;            /**< normal velocity towards the surface it may have: its gap / dt, >= 0 */
     double mass;             /**< obstacle: the touching particle's mass, the least a node answers its
                                   impulse with (node set: 0, every node with its own) */
+    double pmass;            /**< node set: the touching particle's mass; a node lighter than it takes a share
+                                  of the point in proportion (obstacle: 0) */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
     size_t particle;         /**< the particle whose foot it is */
@@ -265,6 +272,7 @@ typedef struct pm_contact {
                                   (the end of pt[]) and how many, their impulses to start the sweeps from */
     size_t pt_cursor;        /**< the next of them to match (pm_contact_gaps) */
     double pt_dt;            /**< the step the points' impulses were found for (0: none yet) */
+    size_t *pt_renum;        /**< pt_cap: scratch of pm_contact_renumber() */
     size_t pt_solves;        /**< explicit applications that had touching points, since creation */
     size_t pt_sweeps;        /**< the Gauss-Seidel sweeps those took, summed */
 } pm_contact;
@@ -364,6 +372,13 @@ int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double w
  * node positions and the cell size. Call once after pm_contact_create(). @return PM_OK, PM_ENOMEM
  */
 int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap);
+
+/**
+ * The particles were renumbered (@p perm[j]: the old index of the particle now at j, for @p n
+ * particles): the touching points follow them, so that the next pm_contact_gaps() starts each particle's
+ * point from its own impulses again.
+ */
+void pm_contact_renumber(pm_contact *ct, const uint32_t *perm, size_t n);
 
 /** Free (NULL is fine). */
 void pm_contact_destroy(pm_contact *ct);

@@ -140,8 +140,9 @@ static const double VOTE = 0.5;
 
 /* The impulses particle i's point on surface k had in the last step, if it had one (else zero). Both
  * lists are in the same order, surface by surface and particle by particle, so one cursor runs through
- * the last one. A particle renumbered since (sinks, sources) may take another's impulses: they only
- * start the sweeps, which converge from any start. */
+ * the last one (the points follow their particles through sorts, pm_contact_renumber). A particle
+ * renumbered by sinks or sources may take another's impulses: they only start the sweeps, which
+ * converge from any start. */
 static void last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *q)
 {
     q->lam_n = 0.0;
@@ -161,10 +162,10 @@ static void last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *
     }
 }
 
-/* A point where particle i's surface (its foot on the plane, gap above it) may touch node-set surface k:
- * between the entry e whose node moves the particle most and the neighbour of e on the foot's side. */
+/* A point where particle i (mass pmass) may touch node-set surface k at its foot on the plane, gap above
+ * it: between the entry e whose node moves the particle most and the neighbour of e on the foot's side. */
 static void add_point(pm_contact *ct, size_t k, int32_t e, size_t i, double sd, const double n[PM_DIM],
-                      double gap, const double *xp)
+                      double gap, const double *xp, double pmass)
 {
 #if PM_DIM != 2
 #error "a point lies between two nodes of a line"
@@ -205,6 +206,7 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, size_t i, double sd, 
     q->w[1] = b >= 0 ? s : 0.0;
     q->allow = gap > 0 ? gap : 0.0; /* divided by dt in the law */
     q->mass = 0.0;
+    q->pmass = pmass;
 }
 
 /* A point where particle ip (stencil st, normal n into obstacle k, gap, mass mp) may touch an obstacle:
@@ -254,6 +256,7 @@ static void add_touch(pm_contact *ct, size_t k, size_t ip, const pm_stencil *st,
         q->normal[d] = n[d];
     q->allow = gap > 0 ? gap : 0.0;
     q->mass = mp;
+    q->pmass = 0.0;
     ct->n_pt++;
 }
 
@@ -328,7 +331,7 @@ static void surface_gaps(pm_contact *ct, size_t k, size_t first, size_t last, co
             if (sf->kind != PM_CONTACT_NODE_SET)
                 add_touch(ct, k, i, &st, n, gap, p->mass[i]);
             else if (e_max >= 0)
-                add_point(ct, k, e_max, i, sd, n, gap, p->x + PM_DIM * i);
+                add_point(ct, k, e_max, i, sd, n, gap, p->x + PM_DIM * i, p->mass[i]);
         }
     }
     /* a node held by both faces of a corner has two entries side by side, and the slot named the last */

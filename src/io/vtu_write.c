@@ -164,9 +164,12 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         { "deformation_gradient", PM_VTU_F64, PM_NF, f_names },
         { "half_size", PM_VTU_F64, PM_DIM, NULL },
         { "id", PM_VTU_I32, 1, NULL },
+        { "material_state", PM_VTU_F64, (int)p->n_state, NULL },
     };
     const size_t n = p->n;
-    const pm_vtu_piece pc = { n, n, n, arrays, sizeof arrays / sizeof arrays[0], &t };
+    /* the models' history variables (docs/materials.md names them per model); none, no array */
+    const size_t n_arrays = sizeof arrays / sizeof arrays[0] - (p->n_state ? 0 : 1);
+    const pm_vtu_piece pc = { n, n, n, arrays, n_arrays, &t };
     char tmp[4096];
     FILE *f = pm_atomic_fopen(path, tmp, sizeof tmp);
     if (!f)
@@ -202,6 +205,8 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
         rc = pm_vtu_write_block(f, p->hsize, PM_DIM * n * sizeof(double));
     if (!rc)
         rc = pm_vtu_write_block(f, p->id, n * sizeof(int32_t));
+    if (!rc && p->n_state)
+        rc = pm_vtu_write_block(f, p->state, p->n_state * n * sizeof(double));
     if (!rc) {
         fill_vec3(scratch, p->x, NULL, n);
         rc = pm_vtu_write_block(f, scratch, 3 * n * sizeof(double));

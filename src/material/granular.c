@@ -158,12 +158,19 @@ static int gr_update(const pm_material *m, const pm_material_step *in, double *s
 }
 
 /* Seed 004 §3.3: the volume change of the granular pressure from the density of the points'
- * positions, J = rho_ref / rho, held at the loosest state like the accumulated one. */
+ * positions, J = rho_ref / rho, acting only where it shows the point apart, looser than the loosest
+ * skeleton. Inside a skeleton the positions' density of a point scatters by 0.11-0.16 in ln rho
+ * (points bunch within cells), against 0.05 from e0 to e_max, and raising eps_v to it wherever it was
+ * looser ratcheted the state loose step after step: 30 portions of the silo filling then crowded 6 %
+ * closer than their pressure allows (examples/silo_filling, "Where the over-compaction comes from").
+ * Without e_max no density is looser than the loosest skeleton, and the positions do not act. */
 static void gr_density_state(const pm_material *m, double rho_ratio, double *state)
 {
-    (void)m;
-    if (rho_ratio > 0)
-        state[1] = fmax(state[1], -log(rho_ratio));
+    if (!(rho_ratio > 0))
+        return;
+    const double ev = -log(rho_ratio);
+    if (ev > m->derived[D_EVMAX])
+        state[1] = fmax(state[1], ev);
 }
 
 /* Tangent moduli at the state's volumetric strain. */

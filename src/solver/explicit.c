@@ -135,8 +135,10 @@ int pm_explicit_step(pm_sim *s, double dt)
     const int appended = pm_flow_take_changed(s);
     const int sort = s->sort_interval > 0 && (s->step % s->sort_interval == 0 || appended) &&
                      s->grid.n_cells < UINT32_MAX;
-    if (sort)
+    if (sort) {
         pm_sim_sort_particles(s);
+        pm_contact_renumber(s->contact, s->perm, s->p.n);
+    }
     pm_scatter_prepare(s, sort);
     pm_flow_before_step(s);
     switch (s->c->analysis.scheme) {

@@ -286,7 +286,10 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
     pm_progress pg;
     pm_progress_begin(&pg, stderr, end, o->quiet || o->verbose);
     while (!rc && s->t < end - eps) {
-        double dt = next_dt(s);
+        /* the last step is cut to land on the end time: it says nothing of the run's stability, so
+         * the step-size warning and the smallest-step figure follow the step the solver asked for */
+        const double dt_stable = next_dt(s);
+        double dt = dt_stable;
         if (s->t + dt > end)
             dt = end - s->t;
         if (!(dt > 0) || !isfinite(dt)) {
@@ -310,9 +313,9 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
             break;
         if (out && (rc = pm_forces_log_step(&forces, s, s->t >= end - eps)) != PM_OK)
             break;
-        loop.dt_min = fmin(loop.dt_min, dt);
-        loop.dt_max = fmax(loop.dt_max, dt);
-        pm_run_warnings_step(&warn, s->step, s->t, dt);
+        loop.dt_min = fmin(loop.dt_min, dt_stable);
+        loop.dt_max = fmax(loop.dt_max, dt_stable);
+        pm_run_warnings_step(&warn, s->step, s->t, dt_stable);
         if (out) {
             rc = pm_output_probes(out, s->t, &s->p);
             if (!rc && s->t >= loop.next_energy - eps) {

@@ -63,6 +63,12 @@ expect_exit 0 "a modulus of 5 Pa runs" "$PMECH" run softE.json -o softE.out
 check "with a warning naming the key" has "warning: .*materials\[0\].youngs_modulus" err.txt
 check "listed in run.json" python3 -c "import json,sys; w=json.load(open('softE.out/run.json'))['warnings']; sys.exit(0 if len(w)==1 and 'below 1 kPa' in w[0] else 1)"
 
+# With a fixed step of 1e-4 s and an end time a nanosecond past step 500, the last step is cut to 1e-9 s to
+# land on it; that is not a collapsing step: no warning, and run.json's smallest step is the fixed one.
+sed 's/"end_time": 3.5, "cfl": 0.2/"end_time": 0.050000001, "dt": 1e-4/' "$SRC/examples/elastic_disks/case.json" > lastcut.json
+expect_exit 0 "an end time a nanosecond past a step" "$PMECH" run lastcut.json -o lastcut.out --quiet
+check "no step-size warning for the cut last step" python3 -c "import json,sys; r=json.load(open('lastcut.out/run.json')); sys.exit(0 if not r['warnings'] and r['dt_min'] == 1e-4 else 1)"
+
 # A misspelt scatter strategy is refused rather than timed as the default.
 PMECH_SCATTER=bogus expect_exit 2 "PMECH_SCATTER=bogus" "$PMECH" run "$SRC/examples/elastic_disks/case.json" -o scatter.out --quiet
 check "names the variable, the value and the allowed ones" sh -c 'grep -q "PMECH_SCATTER" err.txt && grep -q "bogus" err.txt && grep -q "colour" err.txt && grep -q "buffers" err.txt'

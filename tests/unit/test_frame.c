@@ -117,6 +117,33 @@ static void particles_come_back_as_written(void **state)
     remove("frame_test.vtu");
 }
 
+/* A model's history variables come back as one array of n_state components; a run whose models
+ * keep none writes no such array (above: 15 arrays). */
+static void material_state_comes_back(void **state)
+{
+    (void)state;
+    pm_particles p;
+    const size_t n = 5, ns = 2;
+    assert_int_equal(pm_particles_alloc(&p, n, ns), PM_OK);
+    for (size_t i = 0; i < n * ns; i++)
+        p.state[i] = 0.5 * (double)i - 1.25;
+    double *scratch = malloc(3 * n * sizeof(double));
+    assert_int_equal(pm_vtu_write_particles("state_test.vtu", &p, scratch, 0), PM_OK);
+    pm_frame *f = NULL;
+    assert_int_equal(pm_frame_read("state_test.vtu", &f), PM_OK);
+    assert_int_equal(pm_frame_n_arrays(f), 16);
+    int nc;
+    const double *st = pm_frame_array(f, "material_state", &nc);
+    assert_non_null(st);
+    assert_int_equal(nc, (int)ns);
+    for (size_t i = 0; i < n * ns; i++)
+        assert_true(st[i] == p.state[i]);
+    pm_frame_free(f);
+    free(scratch);
+    pm_particles_free(&p);
+    remove("state_test.vtu");
+}
+
 static void derived_fields_against_closed_forms(void **state)
 {
     (void)state;
@@ -262,6 +289,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(particles_come_back_as_written),
+        cmocka_unit_test(material_state_comes_back),
         cmocka_unit_test(derived_fields_against_closed_forms),
         cmocka_unit_test(grid_fields_come_back),
         cmocka_unit_test(other_files_are_refused),

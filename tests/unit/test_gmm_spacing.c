@@ -21,6 +21,7 @@
 #include "pmech/sim.h"
 #include "shape/meshfree.h"
 #include "solver/meshfree_internal.h"
+#include "sim_case.h"
 
 static void repo_path(const char *rel, char *out, size_t n)
 {
@@ -40,13 +41,7 @@ static pm_sim *gmm_sim(const char *case_path, const char *grid, const char *shap
              "                   \"youngs_modulus\": 1.0e7, \"poisson_ratio\": 0.3 } ],"
              "  \"bodies\": [ { \"name\": \"b\", \"material\": \"m\", \"shape\": %s } ] }",
              grid, shape);
-    int rc = pm_case_load_buffer(text, strlen(text), case_path, c);
-    pm_sim *s = NULL;
-    if (!rc)
-        rc = pm_sim_create(c, &s, 1);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
+    pm_sim *s = sc_sim_of(text, case_path, c);
     assert_non_null(s->mf);
     return s;
 }

@@ -26,6 +26,7 @@
 #include "pmech/sim.h"
 #include "solver/implicit.h"
 #include "solver/sim_internal.h"
+#include "sim_case.h"
 
 static void repo_path(const char *rel, char *out, size_t n)
 {
@@ -85,19 +86,6 @@ static pm_contact *edge_wall(pm_grid *g, const char *curve, size_t nn, const dou
     assert_int_equal(pm_contact_new(g->n_nodes, &ct), 0);
     assert_int_equal(pm_contact_add_edge_set(ct, g, *set, mu, PM_CONTACT_LAW_NODAL_COULOMB, 0), 0);
     return ct;
-}
-
-/* The simulation of case @p text (loaded into @p c as if read from file @p name), which must load and set up. */
-static pm_sim *sim_of(const char *text, const char *name, pm_case *c)
-{
-    int rc = pm_case_load_buffer(text, strlen(text), name, c);
-    pm_sim *s = NULL;
-    if (!rc)
-        rc = pm_sim_create(c, &s, 1);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
-    return s;
 }
 
 enum { NRIM = 48 };
@@ -318,7 +306,7 @@ static void tip_normal_from_material(const double body_min[2], const double body
              "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"outline\", \"coefficient\": 0.2 } ] }",
              path, body_min[0], body_min[1], body_max[0], body_max[1]);
     pm_case c;
-    pm_sim *s = sim_of(text, "/tmp/l_case.json", &c);
+    pm_sim *s = sc_sim_of(text, "/tmp/l_case.json", &c);
     const pm_contact *ct = s->contact;
     size_t tip = ct->n_node;
     for (size_t e = 0; e < ct->n_node; e++)
@@ -524,7 +512,7 @@ static void corner_faces_keep_own_forces(void **state)
              "  \"boundary_conditions\": [ { \"type\": \"friction\", \"boundary\": \"walls\", \"coefficient\": 0 } ] }",
              -G * sin(th), -G * cos(th), path, rho);
     pm_case c;
-    pm_sim *s = sim_of(text, "/tmp/corner_case.json", &c);
+    pm_sim *s = sc_sim_of(text, "/tmp/corner_case.json", &c);
     const pm_contact *ct = s->contact;
     assert_int_equal(ct->n_own_rows, 1); /* one inward corner */
     double *x1 = malloc(2 * s->p.n * sizeof *x1);

@@ -668,12 +668,16 @@ static void granular_loosest_state(void **unused)
     assert_true(fabs(-pm_voigt_mean(s) - pl) <= 1e-12 * pl + 1e-300);
     assert_true(-pm_voigt_mean(s) < 1e-6);
     assert_true(st[1] == evmax);
-    /* the density from positions loosens the state (rho / rho_ref = 0.5: eps_v = ln 2), never
-     * densifies it (1.05 against a point at eps_v = -0.02) */
+    /* the density from positions loosens a point it shows apart, looser than e_max (rho / rho_ref =
+     * 0.5: eps_v = ln 2); it neither loosens a point inside the skeleton (0.97: eps_v = 0.030, under
+     * eps_v,max = 0.051, against a point at -0.02) nor densifies one (1.05) */
     assert_non_null(m.ops->density_state);
     st0[1] = -0.02;
     m.ops->density_state(&m, 0.5, st0);
     assert_true(fabs(st0[1] - log(2.0)) <= 1e-15);
+    st0[1] = -0.02;
+    m.ops->density_state(&m, 0.97, st0);
+    assert_true(st0[1] == -0.02);
     st0[1] = -0.02;
     m.ops->density_state(&m, 1.05, st0);
     assert_true(st0[1] == -0.02);

@@ -37,6 +37,24 @@ static int matches(const char *s, const char *pattern)
     return ok;
 }
 
+/* A progress log on a temporary file, begun for a run to t_end. */
+static FILE *begin_log(pm_progress *pg, double t_end, int quiet)
+{
+    FILE *f = tmpfile();
+    assert_non_null(f);
+    pm_progress_begin(pg, f, t_end, quiet);
+    return f;
+}
+
+/* Fails unless what f holds so far contains want. */
+static void assert_log_has(FILE *f, const char *want)
+{
+    char *t = contents(f);
+    if (strstr(t, want) == NULL)
+        fail_msg("the log lacks \"%s\":\n%s", want, t);
+    free(t);
+}
+
 #define LINE_RE "step [0-9]+  t = [0-9]\\.[0-9]{3}e[-+][0-9]{2} s  [0-9]+\\.[0-9] %  "
 #define RATE_RE "  [0-9.e+-]+ M particle-steps/s"
 
@@ -54,10 +72,8 @@ static void wall_clock_is_monotonic(void **state)
 static void log_lines_every_ten_seconds(void **state)
 {
     (void)state;
-    FILE *f = tmpfile();
-    assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 2.0, 0);
+    FILE *f = begin_log(&pg, 2.0, 0);
     assert_int_equal(pg.tty, 0); /* a regular file is not a terminal */
     const double w0 = pg.wall_start;
     /* straight after begin: nothing */
@@ -94,10 +110,8 @@ static void log_lines_every_ten_seconds(void **state)
 static void eta_follows_a_shrinking_step(void **state)
 {
     (void)state;
-    FILE *f = tmpfile();
-    assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 2.0, 0);
+    FILE *f = begin_log(&pg, 2.0, 0);
     const double w0 = pg.wall_start;
     double t = 1.0, w = w0 + 10.0;
     pm_progress_update_at(&pg, 100, t, 1.0, 1e3, w);
@@ -116,10 +130,8 @@ static void eta_follows_a_shrinking_step(void **state)
 static void terminal_redraws_one_line(void **state)
 {
     (void)state;
-    FILE *f = tmpfile();
-    assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 1.0, 0);
+    FILE *f = begin_log(&pg, 1.0, 0);
     pg.tty = 1; /* as if stderr were a terminal */
     pm_progress_update_at(&pg, 1, 0.1, 0.01, 10, pg.wall_start + 0.1); /* within 0.2 s of begin: nothing */
     char *t = contents(f);
@@ -142,10 +154,8 @@ static void terminal_redraws_one_line(void **state)
 static void quiet_prints_nothing(void **state)
 {
     (void)state;
-    FILE *f = tmpfile();
-    assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 1.0, 1);
+    FILE *f = begin_log(&pg, 1.0, 1);
     pm_progress_update_at(&pg, 5, 0.5, 1.0, 50, pg.wall_start + 100);
     pm_progress_end(&pg, 10, 1.0, 2.0, 100);
     char *t = contents(f);
@@ -157,14 +167,10 @@ static void quiet_prints_nothing(void **state)
 static void unknown_eta_before_time_advances(void **state)
 {
     (void)state;
-    FILE *f = tmpfile();
-    assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 1.0, 0);
+    FILE *f = begin_log(&pg, 1.0, 0);
     pm_progress_update_at(&pg, 0, 0.0, 0.0, 0.0, pg.wall_start + 11);
-    char *t = contents(f);
-    assert_non_null(strstr(t, "0.0 %  ETA -:--:--  "));
-    free(t);
+    assert_log_has(f, "0.0 %  ETA -:--:--  ");
     fclose(f);
 }
 
@@ -177,10 +183,8 @@ static void unknown_eta_before_time_advances(void **state)
 static void rate_follows_a_growing_count(void **state)
 {
     (void)state;
-    FILE *f = tmpfile();
-    assert_non_null(f);
     pm_progress pg;
-    pm_progress_begin(&pg, f, 2.0, 0);
+    FILE *f = begin_log(&pg, 2.0, 0);
     const double w0 = pg.wall_start;
     double sum = 0;
     for (long k = 1; k <= 2000; k++) {
@@ -191,11 +195,9 @@ static void rate_follows_a_growing_count(void **state)
             pm_progress_update_at(&pg, k, 1e-3 * (double)k, 2.0, sum, w0 + 20.0);
     }
     pm_progress_end_at(&pg, 2000, 2.0, 2.0, sum, w0 + 20.0);
-    char *t = contents(f);
-    assert_non_null(strstr(t, "step 1000  t = 1.000e+00 s  50.0 %  ETA 0:00:10  5 M particle-steps/s\n"));
-    assert_non_null(strstr(t, "step 2000  t = 2.000e+00 s  100.0 %  ETA 0:00:00  15 M particle-steps/s\n"));
-    assert_non_null(strstr(t, "step 2000  t = 2.000e+00 s  100.0 %  wall 0:00:20  10 M particle-steps/s\n"));
-    free(t);
+    assert_log_has(f, "step 1000  t = 1.000e+00 s  50.0 %  ETA 0:00:10  5 M particle-steps/s\n");
+    assert_log_has(f, "step 2000  t = 2.000e+00 s  100.0 %  ETA 0:00:00  15 M particle-steps/s\n");
+    assert_log_has(f, "step 2000  t = 2.000e+00 s  100.0 %  wall 0:00:20  10 M particle-steps/s\n");
     fclose(f);
 }
 
