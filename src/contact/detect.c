@@ -140,8 +140,8 @@ static const double VOTE = 0.5;
 
 /* The impulses particle i's point on surface k had in the last step, if it had one (else zero). Both
  * lists are in the same order, surface by surface and particle by particle, so one cursor runs through
- * the last one. A particle renumbered since (sinks, sources) may take another's impulses: they only
- * start the sweeps, which converge from any start. */
+ * the last one. A particle renumbered since (the periodic sort, sinks, sources) may take another's
+ * impulses: they only start the sweeps, which converge from any start. */
 static void last_impulses(pm_contact *ct, size_t k, size_t i, pm_contact_point *q)
 {
     q->lam_n = 0.0;
