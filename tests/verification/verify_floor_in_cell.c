@@ -16,10 +16,11 @@
  * Judged, from 2 s to 3 s:
  *  - the volume of the floor layer (the points whose centre lies within a cell of the floor) changes by
  *    less than 2 %: measured 0.25 %; the steady stretch above gave 18 %;
- *  - the largest point of the floor layer at 3 s is below 5 times its volume: the same block on the same
- *    obstacle lying on a grid line (no node below the floor carries material, so no such stretch) ends
- *    with its largest point of all 3.4 times its volume (4.7 before the fix), the loosening of the thin
- *    toe that FLIP leaves on any floor; measured 3.3, the broken run 44;
+ *  - the largest point of the floor layer at 3 s is below 5 times its volume (its excess over it within
+ *    4): the same block on the same obstacle lying on a grid line (no node below the floor carries
+ *    material, so no such stretch) ends with its largest point of all 3.4 times its volume (4.7 before
+ *    the fix), the loosening of the thin toe that FLIP leaves on any floor; measured 3.3, the broken
+ *    run 44;
  *  - the heap's front (its farthest particle) moves by less than 1 % of a cell (at rest). This one the
  *    broken run passed as well: its points grew where they lay.
  */
@@ -96,8 +97,9 @@ int main(int argc, char **argv)
     const double growth = b.layer / a.layer - 1;
     ok &= vu_report("floor_in_cell", "floor layer's volume change from 2 to 3 s (relative)", growth, 0.0, growth,
                     0.02, secs);
-    ok &= vu_report("floor_in_cell", "floor layer's largest V/V0 at 3 s (below 5)", b.largest, 1.0,
-                    b.largest < 5.0 ? 0.0 : b.largest / 5.0 - 1, 0.0, secs);
+    /* judged as its excess over the volume it started with: at most 4, i.e. below 5 times it */
+    ok &= vu_report("floor_in_cell", "floor layer's largest V/V0 at 3 s", b.largest, 1.0, b.largest - 1.0, 4.0,
+                    secs);
     const double creep = (b.front - a.front) / H;
     ok &= vu_report("floor_in_cell", "front's move from 2 to 3 s (cells)", creep, 0.0, creep, 0.01, secs);
     pm_sim_destroy(s);
