@@ -231,6 +231,8 @@ typedef struct pm_contact_point {
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
     size_t particle;         /**< the particle whose foot it is */
+    size_t index;            /**< that particle's index for the rest of the step: particle, unless the
+                                  particles were sorted after the points were found (pm_contact_renumber) */
 } pm_contact_point;
 
 /** Values per entry in pm_contact::pt_impulse. */
@@ -401,6 +403,14 @@ double pm_contact_distance(const pm_contact *ct, const pm_contact_surface *sf, c
  * there; the surfaces' forces are m dv / dt.
  */
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc);
+
+/**
+ * After the particles were sorted in a step whose touching points were already found: perm[k] is the old
+ * index of the particle now at k (n particles), and every point's pm_contact_point::index follows its
+ * particle there. @p inverse is workspace of n values. The points' particle fields, which the next step's
+ * points match to take their impulses from, are left as they were found.
+ */
+void pm_contact_renumber(pm_contact *ct, const uint32_t *perm, int32_t *inverse, size_t n);
 
 /**
  * Explicit steps with the FLIP transfer, after pm_contact_apply() and before the particles' velocity update:

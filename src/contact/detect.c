@@ -192,7 +192,7 @@ static void add_point(pm_contact *ct, size_t k, int32_t e, size_t i, double sd, 
     pm_contact_point *q = &ct->pt[ct->n_pt];
     last_impulses(ct, k, i, q);
     ct->n_pt++;
-    q->particle = i;
+    q->particle = q->index = i;
     q->surface = (int32_t)k;
     q->n = 2;
     for (int d = 0; d < PM_DIM; d++)
@@ -219,7 +219,7 @@ static void add_touch(pm_contact *ct, size_t k, size_t ip, const pm_stencil *st,
     }
     pm_contact_point *q = &ct->pt[ct->n_pt];
     last_impulses(ct, k, ip, q);
-    q->particle = ip;
+    q->particle = q->index = ip;
     int m = 0;
     for (int j = 0; j < st->n; j++) {
         const int32_t e = ct->slot[st->node[j]];

@@ -26,18 +26,29 @@ void pm_contact_particle_velocities(const pm_contact *ct, const pm_approx *a, pm
         const pm_contact_surface *sf = &ct->surface[pt->surface];
         /* a node set's points are feet between nodes on the surface: the law holds those nodes
          * themselves, and the FLIP update passes their change on in full */
-        if (sf->kind == PM_CONTACT_NODE_SET || sf->points_lost || !(pt->lam_n > 0) || pt->particle >= p->n)
+        if (sf->kind == PM_CONTACT_NODE_SET || sf->points_lost || !(pt->lam_n > 0) || pt->index >= p->n)
             continue;
         pm_stencil st;
-        if (pm_approx_eval(a, p, pt->particle, &st) != 0)
+        if (pm_approx_eval(a, p, pt->index, &st) != 0)
             continue;
         double v[PM_DIM] = {0};
         for (int k = 0; k < st.n; k++)
             for (int d = 0; d < PM_DIM; d++)
                 v[d] += st.N[k] * v0[PM_DIM * st.node[k] + d];
-        double *vp = p->v + PM_DIM * pt->particle;
-        const double *ap = shift > 0 ? p->a + PM_DIM * pt->particle : NULL;
+        double *vp = p->v + PM_DIM * pt->index;
+        const double *ap = shift > 0 ? p->a + PM_DIM * pt->index : NULL;
         for (int d = 0; d < PM_DIM; d++)
             vp[d] = ap ? v[d] - shift * ap[d] : v[d];
     }
+}
+
+void pm_contact_renumber(pm_contact *ct, const uint32_t *perm, int32_t *inverse, size_t n)
+{
+    if (!ct || ct->n_pt == 0)
+        return;
+    for (size_t k = 0; k < n; k++)
+        inverse[perm[k]] = (int32_t)k;
+    for (size_t q = 0; q < ct->n_pt; q++)
+        if (ct->pt[q].index < n)
+            ct->pt[q].index = (size_t)inverse[ct->pt[q].index];
 }

@@ -137,18 +137,20 @@ int pm_explicit_step(pm_sim *s, double dt)
     int rc = s->approx->ops->connect(s->approx, &s->p);
     if (rc)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
-    /* particles drift apart in memory as they move; a periodic sort keeps the scatters local (and
-     * puts particles a source appended among their neighbours); before the contact's
-     * touching points are found, which name their particles by index */
-    const int appended = pm_flow_take_changed(s);
-    const int sort = s->sort_interval > 0 && (s->step % s->sort_interval == 0 || appended) &&
-                     s->grid.n_cells < UINT32_MAX;
-    if (sort)
-        pm_sim_sort_particles(s);
     pm_sim_update_constraints(s);
     pm_contact_gaps(s->contact, s->approx, &s->p); /* from where the material is at the step's start */
     if (s->rho_p && (rc = pm_sim_volumes_from_positions(s)) != PM_OK)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
+    /* particles drift apart in memory as they move; a periodic sort keeps the scatters local (and
+     * puts particles a source appended among their neighbours); the contact's touching
+     * points, found before, follow their particles */
+    const int appended = pm_flow_take_changed(s);
+    const int sort = s->sort_interval > 0 && (s->step % s->sort_interval == 0 || appended) &&
+                     s->grid.n_cells < UINT32_MAX;
+    if (sort) {
+        pm_sim_sort_particles(s);
+        pm_contact_renumber(s->contact, s->perm, s->iscratch, s->p.n);
+    }
     pm_scatter_prepare(s, sort);
     pm_flow_before_step(s);
     switch (s->c->analysis.scheme) {
