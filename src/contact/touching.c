@@ -1,6 +1,7 @@
 /*
  * What the law at the touching particles does to the particles themselves (contact.h,
- * pm_contact_particle_velocities).
+ * pm_contact_particle_velocities), and the points' particle indices through the periodic sort that follows
+ * their detection within a step (pm_contact_renumber).
  *
  * An obstacle acting at the particles holds the velocity each touching particle's stencil gives it, the
  * one it moves with. The FLIP update then adds to the particle's own velocity only the change of that
