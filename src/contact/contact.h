@@ -43,6 +43,9 @@
  *                       particles' own velocities need. The resultant
  *                       force of every surface (m dv / dt, summed over its nodes) is kept for
  *                       pm_contact_force_of().
+ *   pm_contact_particle_velocities
+ *                       explicit FLIP steps, right after: the particles an obstacle acting at the
+ *                       particles pushed take the velocity the law let them move with (touching.c).
  *   pm_contact_project_normal
  *                       explicit steps, velocities re-projected within a step (MUSL, USF start,
  *                       predictor): at the entries of nodal-law surfaces that the law held in
@@ -234,7 +237,8 @@ typedef struct pm_contact_point {
                                   of the point in proportion (obstacle: 0) */
     double lam_n;            /**< normal impulse per unit velocity weight the law gave it in this step */
     double lam_t[PM_DIM];    /**< tangential impulse, the same way, |lam_t| <= mu lam_n */
-    size_t particle;         /**< the particle whose foot it is */
+    size_t particle;         /**< the particle whose foot it is (its index after a sort that follows the
+                                  points' detection: pm_contact_renumber) */
 } pm_contact_point;
 
 /** Values per entry in pm_contact::pt_impulse. */
@@ -413,6 +417,18 @@ double pm_contact_distance(const pm_contact *ct, const pm_contact_surface *sf, c
  * there; the surfaces' forces are m dv / dt.
  */
 void pm_contact_apply(pm_contact *ct, pm_contact_field f, double dt, double dt_acc);
+
+/**
+ * Explicit steps with the FLIP transfer, after pm_contact_apply() and before the particles' velocity update:
+ * every particle touching an obstacle that acts at the particles (pm_contact_surface::at_particles) and
+ * whose point the law pushed in this step (normal impulse > 0) takes as its own velocity the one its
+ * stencil gives it from the nodal start velocity @p v0, less @p shift times its acceleration p->a (the
+ * predictor-corrector's momentum shift; 0: none). The update, which adds the interpolated change, then
+ * leaves it the velocity the law let it move with, not the one it had before the law held it (touching.c
+ * says why). Needs the particles connected where they were at pm_contact_gaps().
+ */
+void pm_contact_particle_velocities(const pm_contact *ct, const pm_approx *a, pm_particles *p, const double *v0,
+                                    double shift);
 
 /** Explicit steps, re-projected velocities: at every contact node of @p f that the nodal law held in
  *  this step's apply, the normal velocity (relative to the surface) the law left it, whether the mapped

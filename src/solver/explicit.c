@@ -33,6 +33,14 @@ static const char *failure_text(const pm_sim *s, long i)
                                 : "inverted (det F <= 0): the run diverged; try a smaller dt or cfl";
 }
 
+/* The particles an obstacle holds at its touching points take the velocity they move with
+ * (touching.c); XPIC and APIC build the particles' velocities from the grid's and need it not. */
+static void contact_particles(pm_sim *s, double shift)
+{
+    if (s->c->analysis.transfer == PM_TRANSFER_FLIP)
+        pm_contact_particle_velocities(s->contact, s->approx, &s->p, s->nd.vel, shift);
+}
+
 /* USL and MUSL: forces from the stress at the start, then (MUSL) velocities re-projected. */
 static int step_usl_musl(pm_sim *s, double dt, int musl)
 {
@@ -46,6 +54,7 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
         pm_apic_p2g_momentum(s);
     pm_check(pm_loads_apply(s, s->t));
     pm_xp_grid_update(s, dt);
+    contact_particles(s, 0.0);
     pm_nodal *nd = &s->nd;
     if (musl) {
         if (apic)
@@ -82,6 +91,7 @@ static int step_usf(pm_sim *s, double dt)
         return fail_particle(s, bad, failure_text(s, bad));
     pm_check(pm_loads_apply(s, s->t));
     pm_xp_grid_update(s, dt);
+    contact_particles(s, 0.0);
     pm_xp_g2p_usf(s, dt);
     return PM_OK;
 }
@@ -108,6 +118,7 @@ static int step_newmark_pc(pm_sim *s, double dt)
         return fail_particle(s, bad, failure_text(s, bad));
     pm_check(pm_loads_apply(s, s->t + dt));
     pm_xp_grid_newmark(s, dt, gamma);
+    contact_particles(s, (1 - gamma) * dt);
     pm_xp_g2p_newmark(s, dt, gamma);
     return PM_OK;
 }
@@ -131,7 +142,8 @@ int pm_explicit_step(pm_sim *s, double dt)
     if (s->rho_p && (rc = pm_sim_volumes_from_positions(s)) != PM_OK)
         return pm_error_prefix(PM_ESIM, "step %ld (t = %.6g s): ", s->step + 1, s->t);
     /* particles drift apart in memory as they move; a periodic sort keeps the scatters local (and
-     * puts particles a source appended among their neighbours) */
+     * puts particles a source appended among their neighbours); the contact's touching
+     * points, found before, follow their particles */
     const int appended = pm_flow_take_changed(s);
     const int sort = s->sort_interval > 0 && (s->step % s->sort_interval == 0 || appended) &&
                      s->grid.n_cells < UINT32_MAX;
