@@ -27,8 +27,9 @@
  *                       the touching points: the foot on the surface of every particle within half a
  *                       cell of it, between two neighbouring nodes of the set, with its own gap; for
  *                       the nodal law of an obstacle (polyline, polygon, circle) that acts at the
- *                       particles (acts_at), every particle whose gap is within half a cell, acting
- *                       through its stencil's candidate nodes.
+ *                       particles (acts_at), and of a GMM `friction` wall on a grid side or line,
+ *                       every particle whose gap is within half a cell, acting through its stencil's
+ *                       candidate nodes.
  *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law on every contact node
  *                       that carries mass, on its velocity relative to the surface, then the node's
  *                       prescribed components, then the node's acceleration again as (v - v0) /
@@ -39,8 +40,8 @@
  *                       the nodal law at the points instead (friction.c): the velocity interpolated at
  *                       each point, not each node's, may approach by the point's gap and no more, so
  *                       the reaction acts where the material touches, between the nodes; on an
- *                       obstacle acting at the particles, a node is held only as far as the touching
- *                       particles' own velocities need. The resultant
+ *                       obstacle or GMM wall acting at the particles, a node is held only as
+ *                       far as the touching particles' own velocities need. The resultant
  *                       force of every surface (m dv / dt, summed over its nodes) is kept for
  *                       pm_contact_force_of().
  *   pm_contact_particle_velocities
@@ -221,8 +222,9 @@ typedef struct pm_contact_node {
 
 /** Where the material's surface touches a surface (explicit steps, pm_contact_points_reserve): the
  *  nodal law then acts on the velocity interpolated there. On a node set the point is a particle's foot
- *  between two of its nodes; on an obstacle it is the touching particle itself, the law acting on the
- *  velocity its stencil gives it, i.e. on the motion that would carry it into the obstacle. */
+ *  between two of its nodes; on an obstacle or a GMM wall it is the touching particle itself, the
+ *  law acting on the velocity its stencil gives it, i.e. on the motion that would carry it into the
+ *  obstacle. */
 typedef struct pm_contact_point {
     int32_t surface;         /**< index in pm_contact::surface */
     int32_t n;               /**< nodes in node[], entry[], w[] */
@@ -281,15 +283,26 @@ typedef struct pm_contact {
     size_t pt_sweeps;        /**< the Gauss-Seidel sweeps those took, summed */
 } pm_contact;
 
-/** Whether surface @p sf can act at touching points (pm_contact_points_reserve): the nodal law of a node
- *  set, or of an obstacle that asks for it (pm_contact_surface::at_particles). */
+/**
+ * Whether surface @p sf can act at touching points (pm_contact_points_reserve): the nodal law of a node
+ * set, of a meshfree `friction` wall on a grid side or line (not a guard wall), or of an obstacle that
+ * asks for it (pm_contact_surface::at_particles). A GMM wall's nodes hold shape-function coefficients,
+ * not the material's velocity: a particle on the floor takes 0.79 of its velocity from the bottom row
+ * and 0.21 from the row above on a quad grid's cloud, so the law held node by node left the touching
+ * particles approaching, and took stick, slip and lift-off for each coefficient; the bottom row then
+ * carried a wave along the floor faster than the sliding (verify_incline_fine), the friction fell to
+ * 0.27 of the normal force, and a block slid 6 % fast. At the particles, the law acts on the velocity
+ * the material moves with (docs/verification-notes.md). RKPM runs reserve no points, so their walls act
+ * node by node: on h = 0.01 m that block was +1.5 % at 0.1 s node by node and +2.0 % at the particles,
+ * whose normal impulse over 0.01 s ranged over 0.93-1.09 of W cos (0.96-1.03 node by node).
+ */
 static inline int pm_contact_takes_points(const pm_contact_surface *sf)
 {
     if (sf->law != PM_CONTACT_LAW_NODAL_COULOMB)
         return 0;
-    return sf->kind == PM_CONTACT_NODE_SET || (sf->at_particles && (sf->kind == PM_CONTACT_POLYLINE ||
-                                                                    sf->kind == PM_CONTACT_POLYGON ||
-                                                                    sf->kind == PM_CONTACT_CIRCLE));
+    return sf->kind == PM_CONTACT_NODE_SET || (sf->kind == PM_CONTACT_WALL && !sf->guard) ||
+           (sf->at_particles &&
+            (sf->kind == PM_CONTACT_POLYLINE || sf->kind == PM_CONTACT_POLYGON || sf->kind == PM_CONTACT_CIRCLE));
 }
 
 /** Whether surface @p sf acts at touching points in this step: it can, points are reserved, and the last
@@ -370,10 +383,10 @@ int pm_contact_add_wall(pm_contact *ct, int axis, double value, const double nor
 int pm_contact_add_obstacle(pm_contact *ct, const pm_case *c, size_t k, double wave, double h);
 
 /**
- * Let the nodal law of every node-set surface, and of every obstacle that asks for it
- * (pm_contact_surface::at_particles), act where the material touches it instead of node by node, for up
- * to @p cap particles (explicit steps of a single-field MPM run; see pm_contact_gaps). @p g gives the
- * node positions and the cell size. Call once after pm_contact_create(). @return PM_OK, PM_ENOMEM
+ * Let the nodal law of every surface that can (pm_contact_takes_points) act where the material touches
+ * it instead of node by node, for up to @p cap particles (explicit steps of a single-field run; see
+ * pm_contact_gaps). @p g gives the node positions and the cell size. Call once after pm_contact_create().
+ * @return PM_OK, PM_ENOMEM
  */
 int pm_contact_points_reserve(pm_contact *ct, const pm_grid *g, size_t cap);
 

@@ -158,8 +158,10 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
                           s->scatter == PM_SCATTER_BUFFERS)) != 0 ||
         (rc = pm_bc_setup(c, &s->grid, &s->nd)) != 0 ||
         (rc = pm_contact_create(c, &s->grid, pm_sim_frame_grid(s), &s->contact)) != 0 ||
-        /* one field: the friction sides act where the material touches them (src/contact/friction.c) */
-        (!meshfree && !s->mb && (rc = pm_contact_points_reserve(s->contact, &s->grid, s->p.cap)) != 0) ||
+        /* one field: the friction sides (MPM) and walls (GMM) act where the material touches them
+         * (src/contact/friction.c); RKPM's walls act node by node (pm_contact_takes_points says why) */
+        (!s->mb && c->method != PM_METHOD_RKPM &&
+         (rc = pm_contact_points_reserve(s->contact, &s->grid, s->p.cap)) != 0) ||
         (s->mb && (rc = pm_multibody_attach_surfaces(s->mb, pm_contact_n_surfaces(s->contact))) != 0) ||
         (rc = pm_fbar_create(s)) != 0 || (rc = pm_xpic_create(s)) != 0 ||
         (meshfree && (rc = pm_mf_setup_conditions(s)) != 0))
