@@ -36,12 +36,20 @@
  * sliding block does on h = 0.01 m (0.032 s at mu = 0.1, the same step before and after the change
  * above).
  *
- * GMM (MLS) on the same grid (its nodes the grid's, moving with the material, the side a rigid wall
- * acting node by node) to 0.1 s: expected to fail the 2 % velocity criterion, and reported instead of
- * judged. Its bottom row of nodes carries a wave along the floor whose amplitude exceeds the sliding
- * speed (0.02-0.16 m/s about 0.075 at 0.05 s), so part of the row sticks or lifts while the rest slides
- * and the floor's friction falls to 0.27-0.28 of its normal force: +6 % at 0.1 s. The test exits 1 when
- * GMM does agree within 2 %, so that the check is then judged.
+ * GMM (MLS) on the same grid (its nodes the grid's, moving with the material, the side a rigid wall), to
+ * 0.2 s, judged as MPM is: velocity within 2 % at 0.1 s and 0.2 s, energy made below 5 % of the friction
+ * work, rise below 0.25 h. Its wall acted node by node on the cloud's nodes until it acted at the touching
+ * particles (src/contact/contact.h, pm_contact_takes_points): the bottom row of nodes then carried a wave
+ * along the floor whose amplitude exceeded the sliding speed (0.02-0.16 m/s about 0.075 at 0.05 s), part
+ * of the row stuck, slid backwards or lifted off while the rest slid, and the floor's friction fell to
+ * 0.27-0.28 of its normal force: +6.1 % at 0.1 s, which fails the 2 %. Measured now: +0.17 % at 0.1 s,
+ * +0.58 % at 0.2 s, the friction 0.300 of the normal force after 0.01 s, energy made 3.2 % of the
+ * friction work, rise 0.039 h (the seeded overlap climbed out of, as MPM's).
+ *
+ * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): GMM to 0.1 s only, judged the same way at
+ * 0.1 s (measured +0.17 %, energy made 2.8 % of the friction work by then, rise 0.01 h; node by node
+ * +6.1 %, which still fails). The full test takes 35 s of CPU in the release build, three quarters of it
+ * GMM's.
  */
 #include "verify_util.h"
 
@@ -145,14 +153,18 @@ int main(int argc, char **argv)
         printf("the block's rise is now below 0.01 h: judge it instead of expecting it to fail\n");
         ok = 0;
     }
-    const fine_run f = run("gmm", 0.1);
-    const double err = f.v_at[1] / (a * 0.1) - 1;
-    vu_report(B, "GMM-MLS, h = 0.005 m: velocity at 0.1 s, expected to fail the 2 % criterion (measured +6 %)",
-              f.v_at[1], a * 0.1, err, -1, f.secs);
-    vu_report(B, "GMM-MLS: largest rise of the centre of mass (m)", f.rise, 0, f.rise, -1, f.secs);
-    if (f.ok && fabs(err) <= 0.02) {
-        printf("GMM now slides within 2 %% on h = 0.005 m: judge its velocity instead of expecting it to fail\n");
-        ok = 0;
+    /* the small variant stops GMM at 0.1 s (see the top) */
+    const int n_gmm = vu_small() ? 1 : 2;
+    const fine_run f = run("gmm", ends[n_gmm - 1]);
+    ok &= f.ok;
+    for (int k = 0; k < n_gmm; k++) {
+        snprintf(q, sizeof q, "GMM-MLS, h = 0.005 m, 25 deg, mu 0.3: velocity along the floor at %g s (m/s)", ends[k]);
+        ok &= vu_report(B, q, f.v_at[k], a * ends[k], f.v_at[k] / (a * ends[k]) - 1, 0.02, f.secs);
     }
+    const double work_f = MU * f.mass * G * cos(f.th) * f.travel;
+    ok &= vu_report(B, "GMM-MLS: largest energy made over the run / rigid friction work at the end", f.made / work_f, 0,
+                    f.made / work_f, 0.05, f.secs);
+    ok &= vu_report(B, "GMM-MLS: largest rise of the centre of mass off the floor / h", f.rise / H, 0, f.rise / H, 0.25,
+                    f.secs);
     return ok ? 0 : 1;
 }
