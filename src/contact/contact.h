@@ -27,9 +27,9 @@
  *                       the touching points: the foot on the surface of every particle within half a
  *                       cell of it, between two neighbouring nodes of the set, with its own gap; for
  *                       the nodal law of an obstacle (polyline, polygon, circle) that acts at the
- *                       particles (acts_at), and of a GMM `friction` wall on a grid side or line,
- *                       every particle whose gap is within half a cell, acting through its stencil's
- *                       candidate nodes.
+ *                       particles (acts_at), and of a GMM `friction` wall (a grid side or line, a
+ *                       Gmsh group), every particle whose gap is within half a cell, acting through
+ *                       its stencil's candidate nodes.
  *   pm_contact_apply    explicit steps, after the end-of-step velocity: the law on every contact node
  *                       that carries mass, on its velocity relative to the surface, then the node's
  *                       prescribed components, then the node's acceleration again as (v - v0) /
@@ -285,22 +285,25 @@ typedef struct pm_contact {
 
 /**
  * Whether surface @p sf can act at touching points (pm_contact_points_reserve): the nodal law of a node
- * set, of a meshfree `friction` wall on a grid side or line (not a guard wall), or of an obstacle that
- * asks for it (pm_contact_surface::at_particles). A GMM wall's nodes hold shape-function coefficients,
- * not the material's velocity: a particle on the floor takes 0.79 of its velocity from the bottom row
- * and 0.21 from the row above on a quad grid's cloud, so the law held node by node left the touching
- * particles approaching, and took stick, slip and lift-off for each coefficient; the bottom row then
- * carried a wave along the floor faster than the sliding (verify_incline_fine), the friction fell to
- * 0.27 of the normal force, and a block slid 6 % fast. At the particles, the law acts on the velocity
- * the material moves with (docs/verification-notes.md). RKPM runs reserve no points, so their walls act
- * node by node: on h = 0.01 m that block was +1.5 % at 0.1 s node by node and +2.0 % at the particles,
- * whose normal impulse over 0.01 s ranged over 0.93-1.09 of W cos (0.96-1.03 node by node).
+ * set, of a meshfree `friction` wall (a grid side or line, not a guard wall, or a Gmsh group), or of an
+ * obstacle that asks for it (pm_contact_surface::at_particles). A GMM wall's nodes hold shape-function
+ * coefficients, not the material's velocity: a particle on the floor takes 0.79 of its velocity from the
+ * bottom row and 0.21 from the row above on a quad grid's cloud, so the law held node by node left the
+ * touching particles approaching, and took stick, slip and lift-off for each coefficient; the bottom row
+ * then carried a wave along the floor faster than the sliding (verify_incline_fine), the friction fell to
+ * 0.27 of the normal force, and a block slid 6 % fast. At the particles, the law acts on the velocity the
+ * material moves with (docs/verification-notes.md); on a Gmsh slope meshed twice as fine as the incline
+ * tests' the block was +3.2 % at 0.1 s node by node and +0.7 % at the particles. RKPM runs reserve no
+ * points, so their walls act node by node: on h = 0.01 m that block was +1.5 % at 0.1 s node by node and
+ * +2.0 % at the particles, whose normal impulse over 0.01 s ranged over 0.93-1.09 of W cos (0.96-1.03
+ * node by node).
  */
 static inline int pm_contact_takes_points(const pm_contact_surface *sf)
 {
     if (sf->law != PM_CONTACT_LAW_NODAL_COULOMB)
         return 0;
     return sf->kind == PM_CONTACT_NODE_SET || (sf->kind == PM_CONTACT_WALL && !sf->guard) ||
+           (sf->kind == PM_CONTACT_EDGES && sf->detected) ||
            (sf->at_particles &&
             (sf->kind == PM_CONTACT_POLYLINE || sf->kind == PM_CONTACT_POLYGON || sf->kind == PM_CONTACT_CIRCLE));
 }
