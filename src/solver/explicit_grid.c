@@ -232,11 +232,14 @@ const double *pm_xp_grid_usl_strain_velocity(pm_sim *s, double dt)
     const size_t nn = nd->n_all;
 #pragma omp parallel for schedule(static) num_threads(nd->n_threads)
     for (size_t n = 0; n < nn; n++) {
-        const double m = nd->mass[n], *v = nd->vel + PM_DIM * n, *vn = nd->vel_new + PM_DIM * n;
+        const double m = s->mb ? pm_multibody_strain_mass(s, n) : nd->mass[n];
+        const double *vn = nd->vel_new + PM_DIM * n, *a = nd->acc + PM_DIM * n;
         double *out = nd->vel_strain + PM_DIM * n;
-        const double share = m > mfloor && m < m_c ? m / m_c : 1.0;
-        for (int d = 0; d < PM_DIM; d++) /* prescribed components keep their value */
-            out[d] = (nd->fixed[n] & (1u << d)) ? vn[d] : v[d] + share * (vn[d] - v[d]);
+        const double keep = nd->mass[n] > mfloor && m < m_c ? 1.0 - m / m_c : 0.0;
+        /* the increment is dt a, as the particles take it: from the start velocity the laws left the
+         * node (a no_slip pair's, its centre of mass's); prescribed components keep their value */
+        for (int d = 0; d < PM_DIM; d++)
+            out[d] = (nd->fixed[n] & (1u << d)) ? vn[d] : vn[d] - keep * dt * a[d];
     }
     return nd->vel_strain;
 }
