@@ -3,7 +3,8 @@
  * local damping, constraints, then contact (src/contact): its law acts on the end-of-step velocity
  * only, node by node after the parallel loops, and the acceleration is then taken from the velocity
  * change so that the particles receive the reaction impulses too. The nodes a nodal-law surface may
- * hold meet its law undamped (contact_undamp), so that its reported force is the material's.
+ * hold meet its law undamped (contact_undamp), so that its reported force is the material's. Last,
+ * USL's strain velocity, in which the nodes a particle has only just reached take part of their increment.
  */
 #include "explicit_internal.h"
 #include "meshfree_internal.h"

@@ -67,8 +67,8 @@ int main(int argc, char **argv)
 {
     vu_init(argc, argv);
     const double g = 9.81, t = 0.2;
-    const trial sliding[] = {{30, 0.0, 0, "musl"}, {30, 0.2, 0, "musl"}, {30, 0.2, 0, "usf"}, {30, 0.2, 0, "newmark_pc"},
-                             {30, 0.2, 0, "usl"}};
+    const trial sliding[] = {{30, 0.0, 0, "musl"},       {30, 0.2, 0, "musl"}, {30, 0.2, 0, "usf"},
+                             {30, 0.2, 0, "newmark_pc"}, {30, 0.2, 0, "usl"}};
     int ok = 1;
     for (size_t k = 0; k < sizeof sliding / sizeof sliding[0]; k++) {
         const trial *tr = &sliding[k];
