@@ -213,8 +213,8 @@ void pm_xp_grid_newmark(pm_sim *s, double dt, double gamma)
  * s n particle masses (2 x 2 points), so alpha = C^2 n m_p / m. Here a node lighter than M = 2 C^2 m_p
  * (m_p the heaviest particle's mass) adds only the share m / M of its increment to its start-of-step
  * velocity, which is USF's: alpha then stays at most n / 2 for uniform points (1 for 2 x 2) and 1.5 for
- * the Gauss points of 3 x 3 to 6 x 6, whatever C, and a node of fuller mass keeps USL's velocity
- * exactly. Momentum is untouched: the particles' velocities and positions take the full increments.
+ * the Gauss points of 3 x 3 to 6 x 6, whatever C, where a face crosses a grid line; a node of fuller
+ * mass keeps USL's velocity exactly (and USL's own limit at high C, at a body's corner, stays). Momentum is untouched: the particles' velocities and positions take the full increments.
  */
 const double *pm_xp_grid_usl_strain_velocity(pm_sim *s, double dt)
 {
