@@ -4,7 +4,7 @@
  * only, node by node after the parallel loops, and the acceleration is then taken from the velocity
  * change so that the particles receive the reaction impulses too. The nodes a nodal-law surface may
  * hold meet its law undamped (contact_undamp), so that its reported force is the material's. Last,
- * USL's strain velocity, in which the nodes a particle has only just reached take part of their increment.
+ * USL's strain velocity, in which nodes a particle has only just reached take part of their increment.
  */
 #include "explicit_internal.h"
 #include "meshfree_internal.h"
@@ -214,7 +214,8 @@ void pm_xp_grid_newmark(pm_sim *s, double dt, double gamma)
  * (m_p the heaviest particle's mass) adds only the share m / M of its increment to its start-of-step
  * velocity, which is USF's: alpha then stays at most n / 2 for uniform points (1 for 2 x 2) and 1.5 for
  * the Gauss points of 3 x 3 to 6 x 6, whatever C, where a face crosses a grid line; a node of fuller
- * mass keeps USL's velocity exactly (and USL's own limit at high C, at a body's corner, stays). Momentum is untouched: the particles' velocities and positions take the full increments.
+ * mass keeps USL's velocity exactly (and USL's own limit at high C, at a body's corner, stays).
+ * Momentum is untouched: the particles' velocities and positions take the full increments.
  */
 const double *pm_xp_grid_usl_strain_velocity(pm_sim *s, double dt)
 {
