@@ -4,7 +4,8 @@
  * Size: the picture is as wide as asked; the model region keeps the domain's aspect (one scale in x and
  * y) and fills the width left by the axes, unless it would be more than twice as high as the picture is
  * wide. Positions: the layout gives the pixel of a model point; the pixel at a particle's centre has its
- * colour exactly, a pixel beyond its deformed area is white.
+ * colour exactly, a pixel beyond its deformed area is white; a point sheared past an aspect of 4 or
+ * grown past 4 times its area is drawn capped to them (picture.c).
  * Colours: the ramp's ends and middle are the stops picture.c defines (dark purple, teal, yellow, close
  * to viridis); body pictures use the body palette. Tolerance: 1 level of 255 per channel, cairo's
  * rounding of a double colour to 8 bits.
@@ -240,6 +241,70 @@ static void particles_are_drawn_as_their_deformed_area(void **state)
     pm_grid_free(&g);
 }
 
+/* A point sheared far (F_xy = 5: an aspect of 27) is drawn with an aspect of 4, its area kept: the
+ * parallelogram of its square would reach (1.5, 0.6), half a metre from its centre; the capped shape
+ * reaches 0.24 m along its long axis. Its coloured pixels make its area (4 (1.16 h)^2 det F) within 8 %:
+ * the edge pixels of a shape 0.47 m by 0.12 m at 250 pixels per metre are about 5 % of its area. */
+static void sheared_particles_keep_an_aspect_of_four(void **state)
+{
+    (void)state;
+    static const double b0[3] = {0.85, 0.37, 0.01};
+    pm_grid g;
+    pm_particles p;
+    grid(&g, 2, 1);
+    particles(&p, 1);
+    p.x[0] = 1.0;
+    p.F[PM_FXY] = 5.0;
+    assert_int_equal(pm_render_field(png, &g, &p, PM_FIELD_BODY, &(pm_render_opts){.width = 600}), PM_OK);
+    const pm_picture_layout L = layout_for(&g, 1, 600);
+    picture pic;
+    open_picture(&pic);
+    int x, y;
+    to_pixel(&L, &g, 1.0, 0.5, &x, &y);
+    expect_pixel(&pic, x, y, b0, 1);
+    to_pixel(&L, &g, 1.5, 0.6, &x, &y);
+    expect_pixel(&pic, x, y, white, 1);
+    long coloured = 0;
+    for (int j = 0; j < pic.h; j++)
+        for (int i = 0; i < pic.w; i++) {
+            int c[3];
+            pixel(&pic, i, j, c);
+            coloured += abs(c[0] - (int)lround(255 * b0[0])) <= 1 && abs(c[1] - (int)lround(255 * b0[1])) <= 1 &&
+                        abs(c[2] - (int)lround(255 * b0[2])) <= 1;
+        }
+    const double side = 2 * 1.16 * 0.1 * L.scale;
+    assert_true(fabs((double)coloured / (side * side) - 1) < 0.08);
+    close_picture(&pic);
+    pm_particles_free(&p);
+    pm_grid_free(&g);
+}
+
+/* A point grown to 16 times its area (F = 4 I) is drawn at 4 times it: its half-width 2 x 1.16 x 0.1 m,
+ * so (1.3, 0.5), inside the uncapped 0.46 m, is white, and (1.2, 0.5) is coloured. */
+static void swollen_particles_are_drawn_at_four_times_their_area(void **state)
+{
+    (void)state;
+    static const double b0[3] = {0.85, 0.37, 0.01};
+    pm_grid g;
+    pm_particles p;
+    grid(&g, 2, 1);
+    particles(&p, 1);
+    p.x[0] = 1.0;
+    p.F[PM_FXX] = p.F[PM_FYY] = 4.0;
+    assert_int_equal(pm_render_field(png, &g, &p, PM_FIELD_BODY, &(pm_render_opts){.width = 600}), PM_OK);
+    const pm_picture_layout L = layout_for(&g, 1, 600);
+    picture pic;
+    open_picture(&pic);
+    int x, y;
+    to_pixel(&L, &g, 1.2, 0.5, &x, &y);
+    expect_pixel(&pic, x, y, b0, 1);
+    to_pixel(&L, &g, 1.3, 0.5, &x, &y);
+    expect_pixel(&pic, x, y, white, 1);
+    close_picture(&pic);
+    pm_particles_free(&p);
+    pm_grid_free(&g);
+}
+
 /* Axisymmetric particles far from the axis are drawn their size in the r-z plane: a particle of
  * half-size 0.1 at r = 9 (volume per radian 0.36) covers 0.2 m, not sqrt(0.36) = 0.6 m. */
 static void axisymmetric_particles_have_their_rz_size(void **state)
@@ -384,6 +449,8 @@ int main(void)
         cmocka_unit_test(size_follows_the_grid),
         cmocka_unit_test(speed_colours_at_the_particles),
         cmocka_unit_test(particles_are_drawn_as_their_deformed_area),
+        cmocka_unit_test(sheared_particles_keep_an_aspect_of_four),
+        cmocka_unit_test(swollen_particles_are_drawn_at_four_times_their_area),
         cmocka_unit_test(axisymmetric_particles_have_their_rz_size),
         cmocka_unit_test(body_colours_from_the_palette),
         cmocka_unit_test(colour_bar_label_is_whole),
