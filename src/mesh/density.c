@@ -37,61 +37,6 @@ static int cell_shape(const pm_grid *g, int32_t c, const double x[2], int32_t no
     return 4;
 }
 
-/* Add the integral of N_i (times r when axisymmetric) over the part of quad c whose parametric
- * coordinates lie within half of (xc, yc) to den[i] (the whole cell: 0, 0, 1), by 2 x 2 Gauss points:
- * exact, as N_i det J r is at most cubic in each coordinate. */
-static void quad_part_weights(const pm_grid *g, size_t c, int axi, double xc, double yc, double half, double *den)
-{
-    const int32_t *v = g->conn + 4 * c;
-    static const double XI[4] = {-1, 1, 1, -1}, ETA[4] = {-1, -1, 1, 1};
-    const double gp = 0.5773502691896257645;
-    for (int q = 0; q < 4; q++) {
-        const double xi = xc + half * XI[q] * gp, eta = yc + half * ETA[q] * gp;
-        double N[4], J[4] = {0, 0, 0, 0}, r = 0;
-        for (int k = 0; k < 4; k++) {
-            const double *x = g->x + 2 * v[k];
-            N[k] = 0.25 * (1 + XI[k] * xi) * (1 + ETA[k] * eta);
-            double dxi = 0.25 * XI[k] * (1 + ETA[k] * eta), deta = 0.25 * ETA[k] * (1 + XI[k] * xi);
-            J[0] += dxi * x[0];
-            J[1] += deta * x[0];
-            J[2] += dxi * x[1];
-            J[3] += deta * x[1];
-            r += N[k] * x[0];
-        }
-        double w = fabs(J[0] * J[3] - J[1] * J[2]) * (axi ? r : 1.0) * half * half;
-        for (int k = 0; k < 4; k++)
-            den[v[k]] += N[k] * w;
-    }
-}
-
-/* Add the integral of N_i (times r) over one of triangle c's four halves-scaled triangles to den[i]:
- * part k < 3 is the corner at vertex k, part 3 the middle one (vertices at the sides' midpoints).
- * For linear f and g over a triangle of area A, integral f g = A / 12 (sum f_v g_v + sum f_v sum g_v). */
-static void tri_part_weights(const pm_grid *g, size_t c, int axi, int part, double *den)
-{
-    const int32_t *t = g->conn + 3 * c;
-    const double *p0 = g->x + 2 * t[0], *p1 = g->x + 2 * t[1], *p2 = g->x + 2 * t[2];
-    const double A = 0.125 * fabs((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]));
-    double b[3][3]; /* the part's vertices in barycentric coordinates */
-    for (int v = 0; v < 3; v++)
-        for (int j = 0; j < 3; j++)
-            b[v][j] = part < 3 ? (v == 0 ? (j == part) : 0.5 * ((j == part) + (j == (part + v) % 3)))
-                               : 0.5 * ((j == v) + (j == (v + 1) % 3));
-    double r[3], rs = 0;
-    for (int v = 0; v < 3; v++) {
-        r[v] = b[v][0] * p0[0] + b[v][1] * p1[0] + b[v][2] * p2[0];
-        rs += r[v];
-    }
-    for (int j = 0; j < 3; j++) {
-        double fg = 0, fs = 0;
-        for (int v = 0; v < 3; v++) {
-            fg += b[v][j] * r[v];
-            fs += b[v][j];
-        }
-        den[t[j]] += axi ? A / 12.0 * (fg + fs * rs) : A / 3.0 * fs;
-    }
-}
-
 /* Add integral over cell c of N_i (times r when axisymmetric) to den[i]. */
 static void cell_weights(const pm_grid *g, size_t c, int axi, double *den)
 {
@@ -105,7 +50,25 @@ static void cell_weights(const pm_grid *g, size_t c, int axi, double *den)
             den[v[k]] += axi ? A * (rs + g->x[2 * v[k]]) / 12.0 : A / 3.0;
         return;
     }
-    quad_part_weights(g, c, axi, 0.0, 0.0, 1.0, den);
+    static const double XI[4] = {-1, 1, 1, -1}, ETA[4] = {-1, -1, 1, 1};
+    const double gp = 0.5773502691896257645;
+    for (int q = 0; q < 4; q++) {
+        const double xi = XI[q] * gp, eta = ETA[q] * gp;
+        double N[4], J[4] = {0, 0, 0, 0}, r = 0;
+        for (int k = 0; k < 4; k++) {
+            const double *x = g->x + 2 * v[k];
+            N[k] = 0.25 * (1 + XI[k] * xi) * (1 + ETA[k] * eta);
+            double dxi = 0.25 * XI[k] * (1 + ETA[k] * eta), deta = 0.25 * ETA[k] * (1 + XI[k] * xi);
+            J[0] += dxi * x[0];
+            J[1] += deta * x[0];
+            J[2] += dxi * x[1];
+            J[3] += deta * x[1];
+            r += N[k] * x[0];
+        }
+        double w = fabs(J[0] * J[3] - J[1] * J[2]) * (axi ? r : 1.0);
+        for (int k = 0; k < 4; k++)
+            den[v[k]] += N[k] * w;
+    }
 }
 
 int pm_density_from_positions(const pm_grid *g, const pm_particles *p, int axisymmetric, int32_t material,
@@ -193,48 +156,6 @@ void pm_density_smooth(const pm_grid *g, const pm_particles *p, int32_t material
             for (int k = 0; k < 4; k++)
                 r += st_N[4 * i + k] * num[st_node[4 * i + k]];
             rho_s[i] = r;
-        }
-    }
-}
-
-void pm_density_parts(const pm_grid *g, const pm_particles *p, int axisymmetric, int32_t material,
-                      const int32_t *st_node, const double *st_N, double *rho_s, double *work)
-{
-    double *num = work, *den = work + g->n_nodes, *occupied = work + 2 * g->n_nodes;
-    memset(work, 0, (2 * g->n_nodes + 4 * g->n_cells) * sizeof(double));
-    const int tri = g->element == PM_TRI3;
-    for (size_t i = 0; i < p->n; i++) {
-        if (material >= 0 && p->material[i] != material)
-            continue;
-        const double *N = st_N + 4 * i;
-        for (int k = 0; k < 4; k++)
-            num[st_node[4 * i + k]] += N[k] * p->mass[i];
-        /* which quarter of its cell the point is in: a quad's parametric quadrant (N_1 + N_2 and N_2 +
-         * N_3 are its coordinates from 0 to 1), a triangle's corner where N_k >= 1/2, else its middle */
-        int part;
-        if (tri)
-            part = N[0] >= 0.5 ? 0 : N[1] >= 0.5 ? 1 : N[2] >= 0.5 ? 2 : 3;
-        else
-            part = (N[1] + N[2] >= 0.5) + 2 * (N[2] + N[3] >= 0.5);
-        occupied[4 * (size_t)p->cell[i] + part] = 1.0;
-    }
-    for (size_t c = 0; c < g->n_cells; c++)
-        for (int part = 0; part < 4; part++) {
-            if (occupied[4 * c + part] == 0)
-                continue;
-            if (tri)
-                tri_part_weights(g, c, axisymmetric, part, den);
-            else
-                quad_part_weights(g, c, axisymmetric, (part & 1) ? 0.5 : -0.5, (part & 2) ? 0.5 : -0.5, 0.5, den);
-        }
-    for (size_t i = 0; i < p->n; i++) {
-        rho_s[i] = 0;
-        if (material >= 0 && p->material[i] != material)
-            continue;
-        for (int k = 0; k < 4; k++) {
-            const int32_t nd = st_node[4 * i + k];
-            if (den[nd] > 0)
-                rho_s[i] += st_N[4 * i + k] * num[nd] / den[nd];
         }
     }
 }

@@ -66,29 +66,6 @@ int pm_density_from_positions(const pm_grid *g, const pm_particles *p, int axisy
 void pm_density_smooth(const pm_grid *g, const pm_particles *p, int32_t material, int passes, const int32_t *st_node,
                        const double *st_N, const double *rho_p, double *rho_s, double *work);
 
-/**
- * @brief The points' densities with only the occupied quarters of each cell counted as filled.
- *
- * As pm_density_from_positions(), but each cell is split into four parts (a quad's parametric
- * quadrants; a triangle's three corner triangles and its middle one, by the sides' midpoints), and the
- * denominator of node i integrates N_i (times r when axisymmetric) over the parts that hold at least
- * one selected point. A free surface that crosses a cell then no longer dilutes the density of the
- * points below it by the cell's empty part (down to a quarter of the cell instead of all of it), while
- * points spread three times further apart than the material's spacing (one point in a cell of nine)
- * still read a fraction of the material's density.
- *
- * @param g grid
- * @param p particles (masses, cells)
- * @param axisymmetric 1 for axisymmetric runs (volumes per radian), else 0
- * @param material only particles of this material index count (-1: all; the others get 0)
- * @param st_node, st_N the points' cell nodes and shape function values, 4 per point, as
- *          pm_density_from_positions() keeps them
- * @param rho_s receives the densities (p->n)
- * @param work workspace of 2 g->n_nodes + 4 g->n_cells doubles
- */
-void pm_density_parts(const pm_grid *g, const pm_particles *p, int axisymmetric, int32_t material,
-                      const int32_t *st_node, const double *st_N, double *rho_s, double *work);
-
 #ifdef __cplusplus
 }
 #endif

@@ -179,7 +179,7 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     if (c->analysis.density_from_positions) {
         s->rho_node = malloc(s->grid.n_nodes * sizeof(double));
         s->rho_p = malloc((s->p.cap ? s->p.cap : 1) * sizeof(double));
-        s->rho_work = malloc((2 * s->grid.n_nodes + 4 * s->grid.n_cells) * sizeof(double));
+        s->rho_work = malloc((2 * s->grid.n_nodes + s->grid.n_cells) * sizeof(double));
         s->rho_s = malloc((s->p.cap ? s->p.cap : 1) * sizeof(double));
         s->rho_st_node = malloc(4 * (s->p.cap ? s->p.cap : 1) * sizeof(int32_t));
         s->rho_st_N = malloc(4 * (s->p.cap ? s->p.cap : 1) * sizeof(double));
@@ -350,9 +350,7 @@ int pm_sim_volumes_from_positions(pm_sim *s)
      * e_max from 4.7 % to 1.0 % (examples/silo_filling/compaction.py skeleton); the volumes keep the
      * point's own value, which the forces were verified with. */
     enum { STATE_DENSITY_PASSES = 2 };
-    pm_density_parts(&s->grid, p, s->c->formulation == PM_AXISYMMETRIC, -1, s->rho_st_node, s->rho_st_N, s->rho_s,
-                     s->rho_work);
-    pm_density_smooth(&s->grid, p, -1, STATE_DENSITY_PASSES, s->rho_st_node, s->rho_st_N, s->rho_s, s->rho_s,
+    pm_density_smooth(&s->grid, p, -1, STATE_DENSITY_PASSES, s->rho_st_node, s->rho_st_N, s->rho_p, s->rho_s,
                       s->rho_work);
     for (size_t i = 0; i < p->n; i++) {
         if (!(s->rho_p[i] > 0))
