@@ -72,7 +72,7 @@ static void cell_weights(const pm_grid *g, size_t c, int axi, double *den)
 }
 
 int pm_density_from_positions(const pm_grid *g, const pm_particles *p, int axisymmetric, int32_t material,
-                              double *rho_node, double *rho_p, double *work, int32_t *st_node, double *st_N)
+                              double *rho_node, double *rho_p, double *work)
 {
     double *den = work, *occupied = work + g->n_nodes;
     memset(rho_node, 0, g->n_nodes * sizeof(double));
@@ -90,13 +90,6 @@ int pm_density_from_positions(const pm_grid *g, const pm_particles *p, int axisy
             return pm_error_set(PM_ESIM, "density from positions: particle %zu: degenerate cell %d", i, (int)c);
         for (int k = 0; k < n; k++)
             rho_node[node[k]] += N[k] * p->mass[i];
-        if (st_node) {
-            /* a triangle's fourth entry weighs nothing, so the later passes need not know the element */
-            for (int k = 0; k < 4; k++) {
-                st_node[4 * i + k] = node[k < n ? k : 0];
-                st_N[4 * i + k] = k < n ? N[k] : 0.0;
-            }
-        }
         occupied[c] = 1.0;
     }
     for (size_t c = 0; c < g->n_cells; c++)
@@ -109,53 +102,10 @@ int pm_density_from_positions(const pm_grid *g, const pm_particles *p, int axisy
             rho_p[i] = 0;
             if (material >= 0 && p->material[i] != material)
                 continue;
-            if (st_node) {
-                for (int k = 0; k < 4; k++)
-                    rho_p[i] += st_N[4 * i + k] * rho_node[st_node[4 * i + k]];
-                continue;
-            }
             int n = cell_shape(g, p->cell[i], p->x + 2 * i, node, N);
             for (int k = 0; k < n; k++)
                 rho_p[i] += N[k] * rho_node[node[k]];
         }
     }
     return PM_OK;
-}
-
-void pm_density_smooth(const pm_grid *g, const pm_particles *p, int32_t material, int passes, const int32_t *st_node,
-                       const double *st_N, const double *rho_p, double *rho_s, double *work)
-{
-    double *num = work, *wsum = work + g->n_nodes;
-    memset(wsum, 0, g->n_nodes * sizeof(double));
-    for (size_t i = 0; i < p->n; i++) {
-        rho_s[i] = rho_p[i];
-        if (material >= 0 && p->material[i] != material)
-            continue;
-        for (int k = 0; k < 4; k++)
-            wsum[st_node[4 * i + k]] += st_N[4 * i + k] * p->mass[i];
-    }
-    /* once per node, so that each pass multiplies (a node no point weighs on keeps 0) */
-    for (size_t n = 0; n < g->n_nodes; n++)
-        wsum[n] = wsum[n] > 0 ? 1.0 / wsum[n] : 0.0;
-    for (int pass = 0; pass < passes; pass++) {
-        memset(num, 0, g->n_nodes * sizeof(double));
-        for (size_t i = 0; i < p->n; i++) {
-            if (material >= 0 && p->material[i] != material)
-                continue;
-            const double w = p->mass[i] * rho_s[i];
-            for (int k = 0; k < 4; k++)
-                num[st_node[4 * i + k]] += st_N[4 * i + k] * w;
-        }
-        for (size_t n = 0; n < g->n_nodes; n++)
-            num[n] *= wsum[n];
-        /* the gather reads only nodal values, so each point's value may be overwritten in place */
-        for (size_t i = 0; i < p->n; i++) {
-            if (material >= 0 && p->material[i] != material)
-                continue;
-            double r = 0.0;
-            for (int k = 0; k < 4; k++)
-                r += st_N[4 * i + k] * num[st_node[4 * i + k]];
-            rho_s[i] = r;
-        }
-    }
 }

@@ -35,36 +35,10 @@ extern "C" {
  * @param rho_node receives g->n_nodes nodal densities (0 where no occupied cell touches the node)
  * @param rho_p receives p->n particle densities (may be NULL; particles of other materials get 0)
  * @param work workspace of g->n_nodes + g->n_cells doubles
- * @param st_node NULL, or room for 4 p->n node indices: each point's cell nodes, kept for
- *          pm_density_smooth() (a triangle's fourth repeats its first, with weight 0)
- * @param st_N NULL (with @p st_node NULL), or room for 4 p->n shape function values at the points
  * @return PM_OK, or PM_ESIM if a selected particle has no cell
  */
 int pm_density_from_positions(const pm_grid *g, const pm_particles *p, int axisymmetric, int32_t material,
-                              double *rho_node, double *rho_p, double *work, int32_t *st_node, double *st_N);
-
-/**
- * @brief The points' densities averaged over their neighbourhood: node -> points -> node, @p passes times.
- *
- * Each pass sets every node to the mass-weighted mean of the densities of the points around it,
- *     rho_i = sum_P N_i(X_P) M_P rho_P / sum_P N_i(X_P) M_P,
- * and every point to its cell's interpolation of those, rho_P = sum_i N_i(X_P) rho_i. A point's
- * density from positions scatters from point to point where points bunch within cells; each pass
- * widens the neighbourhood a point's value stands for by a cell without diluting it at a free
- * surface (only points count, not the cells' empty parts). The nodes and shape function values are
- * the ones pm_density_from_positions() kept, so the points must not have moved since.
- *
- * @param g grid
- * @param p particles (masses)
- * @param material only particles of this material index count (-1: all); the others keep @p rho_p
- * @param passes number of passes (0 copies @p rho_p)
- * @param st_node, st_N the points' cell nodes and shape function values, 4 per point
- * @param rho_p the points' densities from positions
- * @param rho_s receives the averaged densities (p->n)
- * @param work workspace of 2 g->n_nodes doubles
- */
-void pm_density_smooth(const pm_grid *g, const pm_particles *p, int32_t material, int passes, const int32_t *st_node,
-                       const double *st_N, const double *rho_p, double *rho_s, double *work);
+                              double *rho_node, double *rho_p, double *work);
 
 #ifdef __cplusplus
 }

@@ -179,11 +179,8 @@ int pm_sim_create(const pm_case *c, pm_sim **out, int n_threads)
     if (c->analysis.density_from_positions) {
         s->rho_node = malloc(s->grid.n_nodes * sizeof(double));
         s->rho_p = malloc((s->p.cap ? s->p.cap : 1) * sizeof(double));
-        s->rho_work = malloc((2 * s->grid.n_nodes + s->grid.n_cells) * sizeof(double));
-        s->rho_s = malloc((s->p.cap ? s->p.cap : 1) * sizeof(double));
-        s->rho_st_node = malloc(4 * (s->p.cap ? s->p.cap : 1) * sizeof(int32_t));
-        s->rho_st_N = malloc(4 * (s->p.cap ? s->p.cap : 1) * sizeof(double));
-        if (!s->rho_node || !s->rho_p || !s->rho_work || !s->rho_s || !s->rho_st_node || !s->rho_st_N) {
+        s->rho_work = malloc((s->grid.n_nodes + s->grid.n_cells) * sizeof(double));
+        if (!s->rho_node || !s->rho_p || !s->rho_work) {
             rc = pm_error_set(PM_ENOMEM, "out of memory for the density from positions");
             goto fail;
         }
@@ -220,9 +217,6 @@ void pm_sim_destroy(pm_sim *s)
     free(s->rho_node);
     free(s->rho_p);
     free(s->rho_work);
-    free(s->rho_s);
-    free(s->rho_st_node);
-    free(s->rho_st_N);
     free(s->scratch);
     free(s->iscratch);
     free_nodal(&s->nd);
@@ -342,23 +336,14 @@ int pm_sim_volumes_from_positions(pm_sim *s)
 {
     pm_particles *p = &s->p;
     pm_check(pm_density_from_positions(&s->grid, p, s->c->formulation == PM_AXISYMMETRIC, -1, s->rho_node, s->rho_p,
-                                       s->rho_work, s->rho_st_node, s->rho_st_N));
-    /* A material's history reads the density over a neighbourhood wider than one cell: a point's own
-     * value scatters by 0.11-0.16 in ln rho inside a settled granular deposit (points bunch within
-     * cells), more than a state can be told apart by (e0 to e_max is 0.05). Two passes bring the
-     * scatter below the deposit's surface to 0.03-0.10 and the share of its points read looser than
-     * e_max from 4.7 % to 1.0 % (examples/silo_filling/compaction.py skeleton); the volumes keep the
-     * point's own value, which the forces were verified with. */
-    enum { STATE_DENSITY_PASSES = 2 };
-    pm_density_smooth(&s->grid, p, -1, STATE_DENSITY_PASSES, s->rho_st_node, s->rho_st_N, s->rho_p, s->rho_s,
-                      s->rho_work);
+                                       s->rho_work));
     for (size_t i = 0; i < p->n; i++) {
         if (!(s->rho_p[i] > 0))
             continue;
         p->vol[i] = p->mass[i] / s->rho_p[i];
         const pm_material *m = &s->c->materials[p->material[i]];
-        if (m->ops->density_state && s->rho_s[i] > 0)
-            m->ops->density_state(m, s->rho_s[i] / m->density, p->state + p->n_state * i);
+        if (m->ops->density_state)
+            m->ops->density_state(m, s->rho_p[i] / m->density, p->state + p->n_state * i);
     }
     return PM_OK;
 }

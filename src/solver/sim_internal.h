@@ -72,10 +72,7 @@ struct pm_sim {
     int32_t *iscratch;   /**< sort workspace: n ints */
     double *rho_node;    /**< density from positions: nodal densities (NULL when not used) */
     double *rho_p;       /**< density from positions: particle densities */
-    double *rho_work;    /**< density from positions: 2 n_nodes + n_cells doubles */
-    double *rho_s;       /**< density from positions averaged over each point's neighbourhood (granular state) */
-    int32_t *rho_st_node; /**< density from positions: each point's 4 cell nodes */
-    double *rho_st_N;    /**< density from positions: each point's 4 shape function values */
+    double *rho_work;    /**< density from positions: n_nodes + n_cells doubles */
     double energy_gravity_work; /**< reserved for ramped-gravity bookkeeping */
     struct pm_implicit_ws *implicit; /**< implicit/quasi-static workspace (NULL until the first implicit step) */
     struct pm_contact *contact; /**< contact surfaces (friction conditions) and the nodes touching them */

@@ -1,8 +1,7 @@
 /* Density from particle positions (seed 004 eqs. 12-13): a uniformly filled region gives the
  * material density (exactly with Gauss-point seeding; within 1 % with a lattice of points that
  * ignores the cells, away from the region's edge), in plane and axisymmetric (per radian) form,
- * and a compressed filling reads proportionally denser; the average over each point's neighbourhood
- * keeps an exact field exact and narrows the scatter of bunched points. */
+ * and a compressed filling reads proportionally denser. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -44,7 +43,7 @@ static void gauss_seeding_is_exact(void **state)
         gauss_fill(&g, &p, axi, RHO);
         double *rn = malloc(g.n_nodes * sizeof(double)), *rp = malloc(p.n * sizeof(double));
         double *w = malloc((g.n_nodes + g.n_cells) * sizeof(double));
-        assert_int_equal(pm_density_from_positions(&g, &p, axi, -1, rn, rp, w, NULL, NULL), 0);
+        assert_int_equal(pm_density_from_positions(&g, &p, axi, -1, rn, rp, w), 0);
         double worst = 0;
         for (size_t i = 0; i < g.n_nodes; i++)
             worst = fmax(worst, fabs(rn[i] / RHO - 1));
@@ -53,22 +52,6 @@ static void gauss_seeding_is_exact(void **state)
         printf("Gauss-point filling, %s: max relative density error %.2e\n", axi ? "axisymmetric" : "plane", worst);
         /* the quadrature of N_i (and N_i r) is exact for these rules */
         assert_true(worst < 1e-12);
-        /* averaged over the neighbourhood, a field that is exact everywhere stays exact (the shape
-         * functions sum to one and each node's weights to its own denominator) */
-        int32_t *sn = malloc(4 * p.n * sizeof(int32_t));
-        double *sN = malloc(4 * p.n * sizeof(double)), *rs = malloc(p.n * sizeof(double));
-        double *w2 = malloc((2 * g.n_nodes + g.n_cells) * sizeof(double));
-        assert_int_equal(pm_density_from_positions(&g, &p, axi, -1, rn, rp, w2, sn, sN), 0);
-        pm_density_smooth(&g, &p, -1, 2, sn, sN, rp, rs, w2);
-        worst = 0;
-        for (size_t i = 0; i < p.n; i++)
-            worst = fmax(worst, fabs(rs[i] / RHO - 1));
-        printf("  averaged twice over the neighbourhood: max relative error %.2e\n", worst);
-        assert_true(worst < 1e-12);
-        free(sn);
-        free(sN);
-        free(rs);
-        free(w2);
         free(rn);
         free(rp);
         free(w);
@@ -101,7 +84,7 @@ static void lattice_in_a_disk(pm_grid *g, const char *what, int axi, double sque
         p.cell[i] = pm_grid_locate(g, p.x + 2 * i);
     double *rn = malloc(g->n_nodes * sizeof(double)), *rp = malloc(n * sizeof(double));
     double *w = malloc((g->n_nodes + g->n_cells) * sizeof(double));
-    assert_int_equal(pm_density_from_positions(g, &p, axi, -1, rn, rp, w, NULL, NULL), 0);
+    assert_int_equal(pm_density_from_positions(g, &p, axi, -1, rn, rp, w), 0);
     const double h = 1.0 / 20, expect = RHO / squeeze;
     double worst = 0, edge_min = INFINITY;
     for (size_t i = 0; i < n; i++) {
@@ -136,95 +119,11 @@ static void uniform_region_within_one_percent(void **state)
     pm_grid_free(&g);
 }
 
-/* Points of a square block bunched into rows and columns a cell or two apart (3 x 3 points per cell
- * as in examples/silo_filling, the density 30 % above and below its mean in waves of 2 and 3 cells,
- * each point then moved at random by up to a quarter of the spacing): each point's own density scatters
- * about the material's by 0.11 in ln rho, as inside the silo filling's deposit. Averaged twice over
- * the neighbourhood the scatter must fall to under half (it falls to 0.025: each pass averages over
- * about four cells, and the waves are one to three cells long); the points' mean must move by under
- * 1 % (the average is mass-weighted and moves no mass; an unnormalised one would move it by far
- * more); and the block's edge, whose cells are partly empty, must not read looser than each point's
- * own value does there (only points count in the average, not the cells' empty parts). */
-static void neighbourhood_average_narrows_the_scatter(void **state)
-{
-    (void)state;
-    pm_grid g;
-    const double origin[2] = {0, 0}, size[2] = {1, 1};
-    const int cells[2] = {20, 20};
-    assert_int_equal(pm_grid_rectangle(&g, origin, size, cells, PM_QUAD4), 0);
-    /* the block's sides lie inside cells (partly filled cells at its edge), as a deposit's do */
-    const double h = 1.0 / 20, s = h / 3, lo = 0.21, hi = lo + 36 * s;
-    const size_t side = (size_t)((hi - lo) / s + 0.5), n = side * side;
-    pm_particles p;
-    assert_int_equal(pm_particles_alloc(&p, n, 0), 0);
-    unsigned seed = 2026u;
-    for (size_t a = 0; a < side; a++)
-        for (size_t b = 0; b < side; b++) {
-            const size_t i = a * side + b;
-            /* waves of 2 h in x and 3 h in y draw the points into rows and columns that are 30 %
-             * denser and looser than the mean, then each point moves at random */
-            for (int d = 0; d < 2; d++) {
-                seed = seed * 1103515245u + 12345u;
-                const double u = (double)((seed >> 8) & 0xffff) / 65535.0 - 0.5;
-                const double lambda = (d == 0 ? 2 : 3) * h, at = lo + ((d == 0 ? b : a) + 0.5) * s;
-                p.x[2 * i + d] = at - 0.3 * lambda / (2 * M_PI) * sin(2 * M_PI * (at - lo) / lambda) + 0.5 * s * u;
-            }
-            p.mass[i] = RHO * s * s;
-            p.cell[i] = pm_grid_locate(&g, p.x + 2 * i);
-        }
-    p.n = n;
-    double *rn = malloc(g.n_nodes * sizeof(double)), *rp = malloc(n * sizeof(double));
-    double *rs = malloc(n * sizeof(double)), *sN = malloc(4 * n * sizeof(double));
-    double *w = malloc((2 * g.n_nodes + g.n_cells) * sizeof(double));
-    int32_t *sn = malloc(4 * n * sizeof(int32_t));
-    assert_int_equal(pm_density_from_positions(&g, &p, 0, -1, rn, rp, w, sn, sN), 0);
-    pm_density_smooth(&g, &p, -1, 2, sn, sN, rp, rs, w);
-    double m[2] = {0, 0}, m2[2] = {0, 0}, edge[2] = {0, 0};
-    size_t k = 0, ke = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double x = p.x[2 * i], y = p.x[2 * i + 1];
-        const double depth = fmin(fmin(x - lo, hi - x), fmin(y - lo, hi - y));
-        const double v[2] = {log(rp[i] / RHO), log(rs[i] / RHO)};
-        if (depth > 3 * h) {
-            for (int j = 0; j < 2; j++) {
-                m[j] += v[j];
-                m2[j] += v[j] * v[j];
-            }
-            k++;
-        } else if (depth < s) {
-            for (int j = 0; j < 2; j++)
-                edge[j] += v[j];
-            ke++;
-        }
-    }
-    double sd[2];
-    for (int j = 0; j < 2; j++) {
-        m[j] /= (double)k;
-        sd[j] = sqrt(fmax(m2[j] / (double)k - m[j] * m[j], 0.0));
-        edge[j] /= (double)ke;
-    }
-    printf("bunched block: inside, ln(rho / rho_ref) mean %+.4f sd %.4f (own) and %+.4f sd %.4f (averaged); "
-           "edge mean %+.3f and %+.3f\n", m[0], sd[0], m[1], sd[1], edge[0], edge[1]);
-    assert_true(sd[0] > 0.08); /* the bunching this test is about is there */
-    assert_true(sd[1] < 0.5 * sd[0]);
-    assert_true(fabs(m[1] - m[0]) < 0.01);
-    assert_true(edge[1] >= edge[0]);
-    free(rn);
-    free(rp);
-    free(rs);
-    free(sN);
-    free(w);
-    free(sn);
-    pm_particles_free(&p);
-    pm_grid_free(&g);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(gauss_seeding_is_exact),
         cmocka_unit_test(uniform_region_within_one_percent),
-        cmocka_unit_test(neighbourhood_average_narrows_the_scatter),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
