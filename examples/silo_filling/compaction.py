@@ -115,7 +115,7 @@ def measure(run):
               "mean pressure: " + ", ".join("%.3f" % ((layers[k][0] / (0.1 * figs.WIDTH)) * (1 + e_of(layers[k][2] / layers[k][0])) / RHO_S) for k in full))
 
 
-def positions_density(f, case, stencils=False):
+def positions_density(f, case, stencils=False, quarters=False):
     """Each point's density from the positions of all points, as the solver computes it before a step
     (src/mesh/density.c on a structured quad grid): nodal mass sum N_I m over the integral of N_I over
     the cells that hold a point, interpolated back to the point."""
@@ -131,13 +131,17 @@ def positions_density(f, case, stencils=False):
         st = [((cx, cy), (1 - a) * (1 - b)), ((cx + 1, cy), a * (1 - b)), ((cx + 1, cy + 1), a * b),
               ((cx, cy + 1), (1 - a) * b)]
         stencil.append(st)
-        occupied.add((cx, cy))
+        occupied.add((cx, cy, int(a >= 0.5), int(b >= 0.5)) if quarters else (cx, cy, -1, -1))
         for node, w in st:
             mass_node[node] = mass_node.get(node, 0.0) + w * m[i]
     den = {}
-    for cx, cy in occupied:
-        for node in ((cx, cy), (cx + 1, cy), (cx + 1, cy + 1), (cx, cy + 1)):
-            den[node] = den.get(node, 0.0) + 0.25 * hx * hy
+    for cx, cy, u, v in occupied:
+        # the integral of each node's shape function over the cell, or over the occupied quarter
+        # (of (1 - a) over a half: 3/8 on its own side, 1/8 on the other)
+        ia = (0.5, 0.5) if u < 0 else ((0.375, 0.125) if u == 0 else (0.125, 0.375))
+        ib = (0.5, 0.5) if v < 0 else ((0.375, 0.125) if v == 0 else (0.125, 0.375))
+        for node, (j, k) in (((cx, cy), (0, 0)), ((cx + 1, cy), (1, 0)), ((cx + 1, cy + 1), (1, 1)), ((cx, cy + 1), (0, 1))):
+            den[node] = den.get(node, 0.0) + ia[j] * ib[k] * hx * hy
     rho = [sum(w * mass_node[node] / den[node] for node, w in st) for st in stencil]
     return (rho, stencil) if stencils else rho
 
@@ -204,12 +208,14 @@ def points(run):
 
 def skeleton(run):
     """Candidate measures of the skeleton's volume at every frame: each point's density from positions
-    (the solver's before a step), the same averaged node -> points -> node once and twice (what the
-    granular state now reads, src/mesh/density.c), and the distance to the nearest point in spacings of
-    the release lattice (d0 = sqrt(m / rho_ref)). For each: the standard deviation of ln rho within each
-    0.1 m layer of the deposit, and the share of points read apart (looser than e_max; nearest point
-    further than 1.25 d0) in the deposit, in the deposit below its top 50 mm, and among the points not
-    yet in the deposit (falling portions and their landing front)."""
+    (the solver's before a step); the same averaged node -> points -> node once and twice (the measure
+    tried for the granular state, README "A measure that does not scatter, tried"); the same with only
+    the occupied quarters of each cell counted as filled, then averaged twice (the other one tried); and
+    the distance to the nearest point in spacings of the release lattice (d0 = sqrt(m / rho_ref)). For
+    each: the standard deviation of ln rho within each 0.1 m layer of the deposit, and the share of
+    points read apart (looser than e_max; nearest point further than 1.25 d0) in the deposit, in the
+    deposit below its top 50 mm, and among the points not yet in the deposit (falling portions and
+    their landing front)."""
     case = json.load(open(os.path.join(run, "run.json")))["case"]
     case = json.load(open(case if os.path.isabs(case) else os.path.join(os.getcwd(), case)))
     rho_ref = case["materials"][0]["density"]
@@ -225,6 +231,7 @@ def skeleton(run):
         own, stencil = positions_density(f, case, stencils=True)
         once = smooth_density(own, stencil, m)
         twice = smooth_density(once, stencil, m)
+        quarters = smooth_density(smooth_density(positions_density(f, case, quarters=True), stencil, m), stencil, m)
         d0 = math.sqrt(sum(m) / n / rho_ref)
         near = nearest(pts, n)
         ncol = int(round(figs.WIDTH / figs.CELL))
@@ -238,7 +245,8 @@ def skeleton(run):
                                         pts[3 * i + 1] > top[int(pts[3 * i] / figs.CELL)] - figs.CELL)]
         out = [i for i in range(n) if not inside[i]]
         print("  t = %.2f s: %d points in the deposit (%d below its top 50 mm), %d not" % (t, len(dep), len(below), len(out)))
-        for name, v in (("own", own), ("averaged once", once), ("averaged twice", twice)):
+        for name, v in (("own", own), ("averaged once", once), ("averaged twice", twice),
+                        ("occupied quarters, averaged twice", quarters)):
             share = [sum(1 for i in q if v[i] < thr) / max(1, len(q)) for q in (dep, below, out)]
             layers = {}
             for i in dep:
@@ -250,10 +258,10 @@ def skeleton(run):
                 if len(q) > 30:
                     mu = sum(q) / len(q)
                     sds.append(math.sqrt(sum((x - mu) ** 2 for x in q) / len(q)))
-            print("    %-14s apart %.3f / %.3f / %.3f; sd per layer %s"
+            print("    %-34s apart %.3f / %.3f / %.3f; sd per layer %s"
                   % (name, share[0], share[1], share[2], " ".join("%.3f" % x for x in sds)))
         share = [sum(1 for i in q if near[i] > 1.25 * d0) / max(1, len(q)) for q in (dep, below, out)]
-        print("    %-14s apart %.3f / %.3f / %.3f" % ("nearest point", share[0], share[1], share[2]))
+        print("    %-34s apart %.3f / %.3f / %.3f" % ("nearest point", share[0], share[1], share[2]))
 
 
 def smooth_density(rho, stencil, m):
