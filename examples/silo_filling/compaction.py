@@ -10,6 +10,7 @@
         (drop1 with those 30 portions), drop5x60 (drop5 with 60 portions, t = 0-11.8 s, run to 13 s)
     python3 examples/silo_filling/compaction.py measure RUN_DIR [RUN_DIR ...]
     python3 examples/silo_filling/compaction.py points RUN_DIR [RUN_DIR ...]
+    python3 examples/silo_filling/compaction.py skeleton RUN_DIR [RUN_DIR ...]
 
 The three volumes (m^2 per metre of depth) of the deposit's points (those joined to the floor, as
 figures.py finds them): from its surface (the area under the 50 mm columns' tops: what the positions
@@ -114,7 +115,7 @@ def measure(run):
               "mean pressure: " + ", ".join("%.3f" % ((layers[k][0] / (0.1 * figs.WIDTH)) * (1 + e_of(layers[k][2] / layers[k][0])) / RHO_S) for k in full))
 
 
-def positions_density(f, case):
+def positions_density(f, case, stencils=False, quarters=False):
     """Each point's density from the positions of all points, as the solver computes it before a step
     (src/mesh/density.c on a structured quad grid): nodal mass sum N_I m over the integral of N_I over
     the cells that hold a point, interpolated back to the point."""
@@ -130,14 +131,19 @@ def positions_density(f, case):
         st = [((cx, cy), (1 - a) * (1 - b)), ((cx + 1, cy), a * (1 - b)), ((cx + 1, cy + 1), a * b),
               ((cx, cy + 1), (1 - a) * b)]
         stencil.append(st)
-        occupied.add((cx, cy))
+        occupied.add((cx, cy, int(a >= 0.5), int(b >= 0.5)) if quarters else (cx, cy, -1, -1))
         for node, w in st:
             mass_node[node] = mass_node.get(node, 0.0) + w * m[i]
     den = {}
-    for cx, cy in occupied:
-        for node in ((cx, cy), (cx + 1, cy), (cx + 1, cy + 1), (cx, cy + 1)):
-            den[node] = den.get(node, 0.0) + 0.25 * hx * hy
-    return [sum(w * mass_node[node] / den[node] for node, w in st) for st in stencil]
+    for cx, cy, u, v in occupied:
+        # the integral of each node's shape function over the cell, or over the occupied quarter
+        # (of (1 - a) over a half: 3/8 on its own side, 1/8 on the other)
+        ia = (0.5, 0.5) if u < 0 else ((0.375, 0.125) if u == 0 else (0.125, 0.375))
+        ib = (0.5, 0.5) if v < 0 else ((0.375, 0.125) if v == 0 else (0.125, 0.375))
+        for node, (j, k) in (((cx, cy), (0, 0)), ((cx + 1, cy), (1, 0)), ((cx + 1, cy + 1), (1, 1)), ((cx, cy + 1), (0, 1))):
+            den[node] = den.get(node, 0.0) + ia[j] * ib[k] * hx * hy
+    rho = [sum(w * mass_node[node] / den[node] for node, w in st) for st in stencil]
+    return (rho, stencil) if stencils else rho
 
 
 def p_of(ev):
@@ -200,6 +206,90 @@ def points(run):
                                  p_of(ep) / 1e3, sum(r[0] for r in q if r[4] < 1000) / M, sv, sp))
 
 
+def skeleton(run):
+    """Candidate measures of the skeleton's volume at every frame: each point's density from positions
+    (the solver's before a step); the same averaged node -> points -> node once and twice (the measure
+    tried for the granular state, README "A measure that does not scatter, tried"); the same with only
+    the occupied quarters of each cell counted as filled, then averaged twice (the other one tried); and
+    the distance to the nearest point in spacings of the release lattice (d0 = sqrt(m / rho_ref)). For
+    each: the standard deviation of ln rho within each 0.1 m layer of the deposit, and the share of
+    points read apart (looser than e_max; nearest point further than 1.25 d0) in the deposit, in the
+    deposit below its top 50 mm, and among the points not yet in the deposit (falling portions and
+    their landing front)."""
+    case = json.load(open(os.path.join(run, "run.json")))["case"]
+    case = json.load(open(case if os.path.isabs(case) else os.path.join(os.getcwd(), case)))
+    rho_ref = case["materials"][0]["density"]
+    thr = rho_ref * (1 + E0) / (1 + EMAX)
+    print("%s: share of points read apart (deposit / below its top 50 mm / not in the deposit) and, per 0.1 m "
+          "layer of the deposit, the standard deviation of ln rho" % run)
+    for t, path in frames(run):
+        f = read_vtu(path)
+        n, pts, hs, m = f["n"], f["Points"], f["half_size"], f["mass"]
+        if n == 0:
+            continue
+        inside = figs.connected(n, pts, hs)
+        own, stencil = positions_density(f, case, stencils=True)
+        once = smooth_density(own, stencil, m)
+        twice = smooth_density(once, stencil, m)
+        quarters = smooth_density(smooth_density(positions_density(f, case, quarters=True), stencil, m), stencil, m)
+        d0 = math.sqrt(sum(m) / n / rho_ref)
+        near = nearest(pts, n)
+        ncol = int(round(figs.WIDTH / figs.CELL))
+        top = [0.0] * ncol
+        for i in range(n):
+            j = int(pts[3 * i] / figs.CELL)
+            if inside[i] and 0 <= j < ncol:
+                top[j] = max(top[j], pts[3 * i + 1])
+        dep = [i for i in range(n) if inside[i]]
+        below = [i for i in dep if not (0 <= int(pts[3 * i] / figs.CELL) < ncol and
+                                        pts[3 * i + 1] > top[int(pts[3 * i] / figs.CELL)] - figs.CELL)]
+        out = [i for i in range(n) if not inside[i]]
+        print("  t = %.2f s: %d points in the deposit (%d below its top 50 mm), %d not" % (t, len(dep), len(below), len(out)))
+        for name, v in (("own", own), ("averaged once", once), ("averaged twice", twice),
+                        ("occupied quarters, averaged twice", quarters)):
+            share = [sum(1 for i in q if v[i] < thr) / max(1, len(q)) for q in (dep, below, out)]
+            layers = {}
+            for i in dep:
+                if v[i] > 0:
+                    layers.setdefault(int(pts[3 * i + 1] / 0.1), []).append(math.log(v[i] / rho_ref))
+            sds = []
+            for k in sorted(layers):
+                q = layers[k]
+                if len(q) > 30:
+                    mu = sum(q) / len(q)
+                    sds.append(math.sqrt(sum((x - mu) ** 2 for x in q) / len(q)))
+            print("    %-34s apart %.3f / %.3f / %.3f; sd per layer %s"
+                  % (name, share[0], share[1], share[2], " ".join("%.3f" % x for x in sds)))
+        share = [sum(1 for i in q if near[i] > 1.25 * d0) / max(1, len(q)) for q in (dep, below, out)]
+        print("    %-34s apart %.3f / %.3f / %.3f" % ("nearest point", share[0], share[1], share[2]))
+
+
+def smooth_density(rho, stencil, m):
+    """One pass node -> points -> node: each node the mass-weighted mean of its points' values."""
+    num, den = {}, {}
+    for i, st in enumerate(stencil):
+        for node, w in st:
+            num[node] = num.get(node, 0.0) + w * m[i] * rho[i]
+            den[node] = den.get(node, 0.0) + w * m[i]
+    return [sum(w * num[node] / den[node] for node, w in st if den[node] > 0) for st in stencil]
+
+
+def nearest(pts, n):
+    """Distance from each point to its nearest neighbour (a bucket search on 50 mm cells)."""
+    cells = {}
+    for i in range(n):
+        cells.setdefault((int(math.floor(pts[3 * i] / figs.CELL)), int(math.floor(pts[3 * i + 1] / figs.CELL))), []).append(i)
+    out = [math.inf] * n
+    for i in range(n):
+        cx, cy = int(math.floor(pts[3 * i] / figs.CELL)), int(math.floor(pts[3 * i + 1] / figs.CELL))
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for j in cells.get((cx + dx, cy + dy), ()):
+                    if j != i:
+                        out[i] = min(out[i], math.hypot(pts[3 * j] - pts[3 * i], pts[3 * j + 1] - pts[3 * i + 1]))
+    return out
+
+
 if __name__ == "__main__":
     if len(sys.argv) == 4 and sys.argv[1] == "case":
         make_case(sys.argv[2], sys.argv[3])
@@ -209,5 +299,8 @@ if __name__ == "__main__":
     elif len(sys.argv) >= 3 and sys.argv[1] == "points":
         for r in sys.argv[2:]:
             points(r)
+    elif len(sys.argv) >= 3 and sys.argv[1] == "skeleton":
+        for r in sys.argv[2:]:
+            skeleton(r)
     else:
         sys.exit(__doc__)

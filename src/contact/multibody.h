@@ -116,6 +116,12 @@ void pm_multibody_prepare(pm_sim *s);
  *  every field, and acc = (v - v0) / dt_acc at the nodes they touched. */
 void pm_multibody_apply(pm_sim *s, double *v, double dt, double dt_acc);
 
+/** The mass of entry @p e (field e / n_nodes at grid node e % n_nodes) that measures how light it is
+ *  in USL's strain rate (pm_xp_grid_usl_strain_velocity): the fields' summed mass at the node when the
+ *  field's heaviest partner there holds it by a no_slip pair (they move as one field would, and a
+ *  single field has that mass), else the entry's own. */
+double pm_multibody_strain_mass(const pm_sim *s, size_t e);
+
 /** Re-projected velocities @p v: approaching normal velocities removed between fields and at the
  *  boundary surfaces, no_slip pairs at their centre of mass. */
 void pm_multibody_project(pm_sim *s, double *v);

@@ -174,3 +174,19 @@ void pm_multibody_project(pm_sim *s, double *v)
     for (int f = 0; f < s->mb->n_fields; f++)
         pm_contact_project_normal(s->contact, field_view(s, f, v, floor));
 }
+
+double pm_multibody_strain_mass(const pm_sim *s, size_t e)
+{
+    const pm_multibody *mb = s->mb;
+    const double *mass = s->nd.mass, floor = pm_xp_mass_floor(s);
+    const size_t n = e % mb->n_nodes;
+    const int a = (int)(e / mb->n_nodes), b = heaviest_other(mb, mass, floor, n, a);
+    if (b < 0 || mb->law[(size_t)a * (size_t)mb->n_fields + (size_t)b] != PM_PAIR_NO_SLIP)
+        return mass[e];
+    double m = 0;
+    for (int f = 0; f < mb->n_fields; f++) {
+        const double mf = mass[(size_t)f * mb->n_nodes + n];
+        m += mf > floor ? mf : 0.0;
+    }
+    return m;
+}

@@ -10,6 +10,9 @@
  * deformation gradient (in axisymmetric runs: their area in the r-z plane; see COVER for the margin),
  * without antialiasing so
  * that neighbouring particles meet without seams and a particle's centre pixel has its exact colour.
+ * A parallelogram more than ASPECT_MAX times longer than wide is drawn with that aspect instead, with
+ * its area and its axes' directions kept, and one more than AREA_MAX times its initial area is drawn
+ * with that area (ASPECT_MAX).
  */
 #include "io/picture.h"
 
@@ -30,6 +33,46 @@
  * h / 3), so true sizes would leave a seam in every cell; 1.16 closes both, while particles that really
  * separate (cracks, run-out) still show their gaps. */
 #define COVER 1.16
+
+/* Points sheared along a wall or a tool reach shear strains of tens (a silo insert's cone: 1 m/s across a
+ * 20 mm cell for a second), and the parallelogram of their initial square then reaches metres across the
+ * picture, through material that is not theirs and above the free surface. A point stands for the
+ * material within about a cell of it, so its drawn shape is kept within an aspect of 4 (a shear of 1.5
+ * stays as it is), its area unchanged, so that the picture still shows where points crowd or spread. */
+#define ASPECT_MAX 4.0
+
+/* Likewise a point whose volume has grown many times (det F of tens where points separate under a silo
+ * insert or at a run-out's front) is drawn at most 4 times its initial area: larger, it covers empty
+ * space and the points around it; at 4 times it still shows the gap it stands in. */
+#define AREA_MAX 4.0
+
+/* Scales the 2 x 2 map with columns a and b (the parallelogram's half-axes) to an aspect of at most
+ * ASPECT_MAX and an area of at most AREA_MAX times area0 (the undeformed map's): with
+ * M = U diag(s1, s2) V^T, s1 >= |s2|, the singular values become sqrt(A r) and sqrt(A / r), r the capped
+ * aspect, A the capped area, and U, V stay. */
+static void cap_shape(double a[2], double b[2], double area0)
+{
+    const double e = 0.5 * (a[0] + b[1]), f = 0.5 * (a[0] - b[1]);
+    const double g = 0.5 * (a[1] + b[0]), h = 0.5 * (a[1] - b[0]);
+    const double q = hypot(e, h), r = hypot(f, g);
+    const double s1 = q + r, s2 = q - r; /* s2 < 0: the map reflects */
+    const double area_drawn = s1 * fabs(s2), area = fmin(area_drawn, AREA_MAX * area0);
+    if (!(fabs(s2) * ASPECT_MAX < s1) && !(area < area_drawn))
+        return;
+    const double aspect = fmin(s1 / fabs(s2), ASPECT_MAX);
+    const double t1 = sqrt(area * aspect), t2 = copysign(sqrt(area / aspect), s2);
+    /* M = R(phi) diag(s1, s2) R(theta) with these angles (the closed form of a 2 x 2 SVD) */
+    const double a1 = atan2(g, f), a2 = atan2(h, e);
+    const double th = 0.5 * (a2 - a1), ph = 0.5 * (a2 + a1);
+    const double cp = cos(ph), sp = sin(ph), ct = cos(th), st = sin(th);
+    /* R(phi) diag(t1, t2) R(theta), R(x) = [[cos x, -sin x], [sin x, cos x]] */
+    const double m00 = cp * t1 * ct - sp * t2 * st, m01 = -cp * t1 * st - sp * t2 * ct;
+    const double m10 = sp * t1 * ct + cp * t2 * st, m11 = -sp * t1 * st + cp * t2 * ct;
+    a[0] = m00;
+    a[1] = m10;
+    b[0] = m01;
+    b[1] = m11;
+}
 
 void pm_picture_ramp(double t, double rgb[3])
 {
@@ -203,6 +246,7 @@ static void draw_particles(cairo_t *cr, const pm_picture *pic, const pm_picture_
             a[1] = -F[PM_FYX] * hx * s;
             b[0] = F[PM_FXY] * hy * s;
             b[1] = -F[PM_FYY] * hy * s;
+            cap_shape(a, b, hx * hy * s * s);
         }
         cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
         if (hypot(a[0], a[1]) < 0.75 || hypot(b[0], b[1]) < 0.75 || !isfinite(a[0] + a[1] + b[0] + b[1])) {

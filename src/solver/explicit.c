@@ -66,7 +66,7 @@ static int step_usl_musl(pm_sim *s, double dt, int musl)
         /* nd->vel now holds the re-projected velocity used for the strain rate */
         pm_xp_grid_velocity_from_momentum(s, nd->vel);
     }
-    const double *vs = musl ? nd->vel : nd->vel_new;
+    const double *vs = musl ? nd->vel : pm_xp_grid_usl_strain_velocity(s, dt);
     if (s->fbar && (bad = pm_fbar_prepare(s, vs, dt)) != LONG_MAX)
         return fail_particle(s, bad, failure_text(s, bad));
     const long failed = pm_xp_usl_finish(s, dt, musl, vs);

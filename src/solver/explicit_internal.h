@@ -61,4 +61,10 @@ void pm_xp_grid_velocity_from_momentum(pm_sim *s, double *out);
  * constraints and friction. */
 void pm_xp_grid_newmark(pm_sim *s, double dt, double gamma);
 
+/* USL, after pm_xp_grid_update: the end-of-step nodal velocity the strain rate takes, into
+ * nd.vel_strain (returned): v_new, except at nodes lighter than 2 C^2 times the heaviest particle's mass
+ * (C the step's Courant number), which add only their mass over that to their start velocity (the
+ * reasons in explicit_grid.c). GMM and RKPM: v_new itself. */
+const double *pm_xp_grid_usl_strain_velocity(pm_sim *s, double dt);
+
 #endif

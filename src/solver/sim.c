@@ -73,13 +73,14 @@ static int alloc_nodal(pm_nodal *nd, size_t nn, int n_threads, int need_buffers)
     nd->vel_new = calloc(PM_DIM * nn, sizeof(double));
     nd->force = calloc(PM_DIM * nn, sizeof(double));
     nd->acc = calloc(PM_DIM * nn, sizeof(double));
+    nd->vel_strain = calloc(PM_DIM * nn, sizeof(double));
     nd->fixed = calloc(nn, 1);
     nd->vfix = calloc(PM_DIM * nn, sizeof(double));
     nd->n_all = nn;
     nd->n_threads = n_threads < 1 ? 1 : n_threads;
     if (nd->n_threads > 1 && need_buffers)
         nd->scratch = calloc((size_t)(nd->n_threads - 1) * PM_SCATTER_WIDTH * nn, sizeof(double));
-    if (!nd->mass || !nd->mom || !nd->vel || !nd->vel_new || !nd->force || !nd->acc || !nd->fixed ||
+    if (!nd->mass || !nd->mom || !nd->vel || !nd->vel_new || !nd->force || !nd->acc || !nd->vel_strain || !nd->fixed ||
         !nd->vfix || (nd->n_threads > 1 && need_buffers && !nd->scratch))
         return pm_error_set(PM_ENOMEM, "cannot allocate nodal arrays for %zu nodes", nn);
     return PM_OK;
@@ -93,6 +94,7 @@ static void free_nodal(pm_nodal *nd)
     free(nd->vel_new);
     free(nd->force);
     free(nd->acc);
+    free(nd->vel_strain);
     free(nd->fixed);
     free(nd->vfix);
     free(nd->scratch);

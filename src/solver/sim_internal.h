@@ -19,6 +19,7 @@ typedef struct pm_nodal {
     double *vel_new;     /**< velocity at the end of the step, 2 per node */
     double *force;       /**< total force (internal + external), 2 per node */
     double *acc;         /**< acceleration, 2 per node */
+    double *vel_strain;  /**< USL: the end-of-step velocity the strain rate takes, 2 per node */
     uint8_t *fixed;      /**< bit 0: x prescribed, bit 1: y prescribed */
     size_t n_all;        /**< entries of each array: grid nodes x body fields (contact/multibody.h) */
     double *vfix;        /**< prescribed velocity, 2 per node */

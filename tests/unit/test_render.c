@@ -4,7 +4,8 @@
  * Size: the picture is as wide as asked; the model region keeps the domain's aspect (one scale in x and
  * y) and fills the width left by the axes, unless it would be more than twice as high as the picture is
  * wide. Positions: the layout gives the pixel of a model point; the pixel at a particle's centre has its
- * colour exactly, a pixel beyond its deformed area is white.
+ * colour exactly, a pixel beyond its deformed area is white; a point sheared past an aspect of 4 or
+ * grown past 4 times its area is drawn capped to them (picture.c).
  * Colours: the ramp's ends and middle are the stops picture.c defines (dark purple, teal, yellow, close
  * to viridis); body pictures use the body palette. Tolerance: 1 level of 255 per channel, cairo's
  * rounding of a double colour to 8 bits.
@@ -213,30 +214,92 @@ static void speed_colours_at_the_particles(void **state)
     pm_grid_free(&g);
 }
 
+/* The colour of body 0 in the body palette. */
+static const double body0[3] = {0.85, 0.37, 0.01};
+
+/* Draws one point of body 0 at (1.0, 0.5) on a 2 x 1 m grid, 600 pixels wide, with half-size h and the
+ * in-plane F (fxx, fxy; 0, fyy), and opens the picture with its layout. */
+static void draw_one_point(double h, double fxx, double fxy, double fyy, pm_grid *g, picture *pic,
+                           pm_picture_layout *L)
+{
+    pm_particles p;
+    grid(g, 2, 1);
+    particles(&p, 1);
+    p.x[0] = 1.0;
+    p.hsize[0] = p.hsize[1] = h;
+    p.F[PM_FXX] = fxx;
+    p.F[PM_FXY] = fxy;
+    p.F[PM_FYY] = fyy;
+    assert_int_equal(pm_render_field(png, g, &p, PM_FIELD_BODY, &(pm_render_opts){.width = 600}), PM_OK);
+    pm_particles_free(&p);
+    *L = layout_for(g, 1, 600);
+    open_picture(pic);
+}
+
+/* Whether the pixel of model point (x, y) has colour rgb. */
+static void expect_at(const picture *pic, const pm_picture_layout *L, const pm_grid *g, double x, double y,
+                      const double rgb[3])
+{
+    int px, py;
+    to_pixel(L, g, x, y, &px, &py);
+    expect_pixel(pic, px, py, rgb, 1);
+}
+
 /* A particle sheared by F = [1 1; 0 1] covers the parallelogram its half-sizes span, not its square. */
 static void particles_are_drawn_as_their_deformed_area(void **state)
 {
     (void)state;
-    static const double b0[3] = {0.85, 0.37, 0.01};
     pm_grid g;
-    pm_particles p;
-    grid(&g, 2, 1);
-    particles(&p, 1);
-    p.x[0] = 1.0;
-    p.hsize[0] = p.hsize[1] = 0.2;
-    p.F[PM_FXY] = 1.0;
-    assert_int_equal(pm_render_field(png, &g, &p, PM_FIELD_BODY, &(pm_render_opts){.width = 600}), PM_OK);
-    const pm_picture_layout L = layout_for(&g, 1, 600);
     picture pic;
-    open_picture(&pic);
-    int x, y;
+    pm_picture_layout L;
+    draw_one_point(0.2, 1, 1, 1, &g, &pic, &L);
     /* the corner (+0.2 + 0.2, +0.2) of the parallelogram is covered, the square's (-0.18, +0.18) is not */
-    to_pixel(&L, &g, 1.0 + 0.35, 0.5 + 0.18, &x, &y);
-    expect_pixel(&pic, x, y, b0, 1);
-    to_pixel(&L, &g, 1.0 - 0.18, 0.5 + 0.18, &x, &y);
-    expect_pixel(&pic, x, y, white, 1);
+    expect_at(&pic, &L, &g, 1.0 + 0.35, 0.5 + 0.18, body0);
+    expect_at(&pic, &L, &g, 1.0 - 0.18, 0.5 + 0.18, white);
     close_picture(&pic);
-    pm_particles_free(&p);
+    pm_grid_free(&g);
+}
+
+/* A point sheared far (F_xy = 5: an aspect of 27) is drawn with an aspect of 4, its area kept: the
+ * parallelogram of its square would reach (1.5, 0.6), half a metre from its centre; the capped shape
+ * reaches 0.24 m along its long axis. Its coloured pixels make its area (4 (1.16 h)^2 det F) within 8 %:
+ * the edge pixels of a shape 0.47 m by 0.12 m at 250 pixels per metre are about 5 % of its area. */
+static void sheared_particles_keep_an_aspect_of_four(void **state)
+{
+    (void)state;
+    pm_grid g;
+    picture pic;
+    pm_picture_layout L;
+    draw_one_point(0.1, 1, 5, 1, &g, &pic, &L);
+    expect_at(&pic, &L, &g, 1.0, 0.5, body0);
+    expect_at(&pic, &L, &g, 1.5, 0.6, white);
+    long coloured = 0;
+    for (int j = 0; j < pic.h; j++)
+        for (int i = 0; i < pic.w; i++) {
+            int c[3], same = 1;
+            pixel(&pic, i, j, c);
+            for (int k = 0; k < 3; k++)
+                same &= abs(c[k] - (int)lround(255 * body0[k])) <= 1;
+            coloured += same;
+        }
+    const double side = 2 * 1.16 * 0.1 * L.scale;
+    assert_true(fabs((double)coloured / (side * side) - 1) < 0.08);
+    close_picture(&pic);
+    pm_grid_free(&g);
+}
+
+/* A point grown to 16 times its area (F = 4 I) is drawn at 4 times it: its half-width 2 x 1.16 x 0.1 m,
+ * so (1.3, 0.5), inside the uncapped 0.46 m, is white, and (1.2, 0.5) is coloured. */
+static void swollen_particles_are_drawn_at_four_times_their_area(void **state)
+{
+    (void)state;
+    pm_grid g;
+    picture pic;
+    pm_picture_layout L;
+    draw_one_point(0.1, 4, 0, 4, &g, &pic, &L);
+    expect_at(&pic, &L, &g, 1.2, 0.5, body0);
+    expect_at(&pic, &L, &g, 1.3, 0.5, white);
+    close_picture(&pic);
     pm_grid_free(&g);
 }
 
@@ -384,6 +447,8 @@ int main(void)
         cmocka_unit_test(size_follows_the_grid),
         cmocka_unit_test(speed_colours_at_the_particles),
         cmocka_unit_test(particles_are_drawn_as_their_deformed_area),
+        cmocka_unit_test(sheared_particles_keep_an_aspect_of_four),
+        cmocka_unit_test(swollen_particles_are_drawn_at_four_times_their_area),
         cmocka_unit_test(axisymmetric_particles_have_their_rz_size),
         cmocka_unit_test(body_colours_from_the_palette),
         cmocka_unit_test(colour_bar_label_is_whole),
