@@ -50,8 +50,8 @@
  *
  * Small variant (PMECH_VERIFY_SMALL, for sanitizer builds): GMM to 0.1 s only, judged the same way at
  * 0.1 s (measured +0.17 %, energy made 2.8 % of the friction work by then, rise 0.01 h; node by node
- * +6.1 %, which still fails). The full test takes 35 s of CPU in the release build, three quarters of it
- * GMM's.
+ * +6.1 %, which still fails). The full test takes 40 s of CPU in the release build, three quarters of it
+ * GMM's (26 s small).
  */
 #include "verify_util.h"
 
