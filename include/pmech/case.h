@@ -230,6 +230,7 @@ typedef struct pm_case {
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
         pm_fbar_mode fbar;        /**< volumetric averaging against locking (MPM only) */
+        double fbar_own_share;    /**< share s of each particle's own volume change F-bar keeps: J_cell^(1-s) J_p^s */
         pm_srf_opts strength_reduction;
         double max_steps;         /**< a run whose estimated step count exceeds this is refused (default 1e8) */
     } analysis;

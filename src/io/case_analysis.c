@@ -146,6 +146,12 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
                             "is available in explicit analyses only so far; use \"none\" with implicit and "
                             "quasi_static",
                             NULL);
+    /* below 1: a share of 1 would be no averaging at all, which "none" says */
+    pm_check(jr_number(&cx, a, "fbar_own_share", 0, 0, &c->analysis.fbar_own_share));
+    pm_check(jr_range(&cx, "fbar_own_share", c->analysis.fbar_own_share, 0, 0, 1, 1));
+    if (json_object_get(a, "fbar_own_share") && c->analysis.fbar == PM_FBAR_NONE)
+        return pm_case_fail(c->file, "analysis.fbar_own_share", "is a share of F-bar's averaging; set fbar to "
+                            "\"cell\" or remove it", NULL);
     pm_check(jr_enum(&cx, a, "transfer", 0, transfers, PM_TRANSFER_FLIP, &v));
     c->analysis.transfer = (pm_transfer)v;
     if (c->analysis.transfer != PM_TRANSFER_FLIP) {

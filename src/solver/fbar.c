@@ -77,7 +77,8 @@ long pm_fbar_prepare(pm_sim *s, const double *nv, double dt)
         sv[c] += p->vol[i] * f->det[i];
         sw[c] += p->vol[i];
     }
-    const double inv_k = axi ? 1.0 / 3.0 : 0.5;
+    /* alpha^k = (J_cell / J)^(1 - s): the averaged volume ratio J_cell^(1 - s) J^s over the particle's own */
+    const double inv_k = (axi ? 1.0 / 3.0 : 0.5) * (1.0 - s->c->analysis.fbar_own_share);
 #pragma omp parallel for schedule(static) num_threads(s->nd.n_threads)
     for (size_t i = 0; i < n; i++) {
         const int32_t c = p->cell[i];

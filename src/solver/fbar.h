@@ -8,6 +8,13 @@
  * runs (the in-plane block and the hoop stretch). Isochoric flow (von Mises, Mohr-Coulomb or
  * Drucker-Prager with zero dilatancy) then needs one volume constraint per cell instead of one per
  * particle, which linear quads with several particles per cell cannot satisfy without locking.
+ *
+ * With analysis.fbar_own_share s > 0 a particle keeps the share s of its own volume change,
+ * J_bar = J_cell^(1 - s) J_p^s. Full averaging leaves a perfectly plastic flow (no deviatoric
+ * stiffness once yielding) one volume constraint per cell and so without resistance to modes that
+ * change volume in opposite senses at a cell's particles; with FLIP particle velocities such a mode
+ * grows without bound (examples/extrusion at 0.5 mm cells). A small share gives it the bulk stiffness
+ * again at the cost of a little of the locking F-bar removes.
  */
 #ifndef PMECH_FBAR_H
 #define PMECH_FBAR_H
@@ -16,7 +23,7 @@
 
 /* The averaging's workspace, sized once: the scale of every particle and the sums of every cell. */
 typedef struct pm_fbar {
-    double *alpha;  /* per particle: (J_cell / det f_p)^(1/k), applied by pm_fbar_apply */
+    double *alpha;  /* per particle: (J_cell / det f_p)^((1 - s)/k), applied by pm_fbar_scale_rate */
     double *det;    /* per particle: det f_p of the step */
     double *sum;    /* per cell: sum V_p det f_p, then sum V_p */
 } pm_fbar;

@@ -1,11 +1,16 @@
 /*
- * Plane-strain extrusion through a wedge die (seed 004 §5.3.1; examples/extrusion's mesh, 0.65 ms
- * instead of 2.1 ms, without pictures): cases/extrusion.json.
+ * Plane-strain extrusion through a wedge die (seed 004 §5.3.1; examples/extrusion's rectangular-grid case
+ * with 0.5 mm cells on a shorter grid, 0.65 ms instead of 2.1 ms, without pictures):
+ * cases/extrusion.json.
  *
  * Set-up: half model of a billet of half-height H0 = 10 mm in a container, pushed by a rigid ram at
  * 5 m/s through a 30 degree wedge die to the half-height h1 = 5 mm (R = 2); von Mises, E = 200 GPa,
  * nu = 0.3, sigma_0 = 20 MPa, rho = 7800 kg/m^3, Coulomb friction 0.1 on every tool. The billet starts
- * filling the die, so the extrusion is steady after a few tenths of a millisecond.
+ * filling the die, so the extrusion is steady after a few tenths of a millisecond. Pure FLIP (no PIC
+ * share: a PIC share is a loss every step, so it made the die force grow as the step shrank), F-bar
+ * with fbar_own_share 0.02. Without that share this run blows up at 0.39 ms (a point leaves the grid):
+ * perfect plasticity under full F-bar leaves modes that change volume in opposite senses at a cell's
+ * points without stiffness, and FLIP's velocity noise feeds them; so the test fails without it.
  *
  * Judged:
  * - the die's axial force on the material, averaged over 0.3-0.65 ms, against the slab method for a
@@ -13,18 +18,19 @@
  *   drawing with the back stress in place of the front stress): F = H0 2k (1 + B)/B (R^B - 1),
  *   B = mu cot(alpha), k = sigma_0 / sqrt(3): 199.5 kN/m. The slab method leaves out the redundant
  *   shearing at the die's entry and exit, which for this die (mean thickness / contact length 1.5) is
- *   not small: a single-triangle upper-bound field gives 1.12 times the ideal work without friction.
- *   pmech comes out 1.49 times the slab value at these 1 mm cells (5 across the exit; the inclined face
- *   meets the grid's rows as a staircase; the example holds 1.50 over 0.4-2.1 ms) and 1.17 without die
- *   friction; 0.5 mm cells give 1.32-1.38 before FLIP's noise spoils them (docs/verification.md).
- *   Judged within [1.3, 1.7] times the slab value: a regression
- *   guard of this mesh's answer that rejects a die without friction (1.17), the slab value itself and
- *   the ideal work (0.80);
+ *   not small: a single-triangle upper-bound field gives 1.12 times the ideal work without friction and
+ *   196-212 kN/m (0.98-1.06 times the slab value) with it, a bound the rigid-plastic answer cannot
+ *   exceed. pmech comes out 1.23 times the slab value here (the example, 0.4-2.1 ms: 1.24; 1 mm cells
+ *   1.37, 0.25 mm 1.08: the force falls as the cells shrink, docs/verification.md), and 0.96 without
+ *   die friction (the example's grid, 0.4-2.1 ms). Judged within [1.1, 1.35] times the slab value: a regression guard of this mesh's
+ *   answer, not an agreement, that rejects a die without friction, the slab value itself, the ideal work
+ *   (0.80) and the 1 mm answer with 5 % PIC per step (1.49);
  * - strain growing away from the axis (seed 004's observation): over the extruded strip beyond the die's
  *   land, the mean plastic strain of the points in the outer third (y > 2 h1 / 3) over that of the
- *   inner third (y < h1 / 3) above 2 (measured 3.2). Homogeneous compression has a ratio of 1. At
+ *   inner third (y < h1 / 3) above 2 (measured 8.6). Homogeneous compression has a ratio of 1. At
  *   0.65 ms the strip is material that started inside the die and was sheared mostly along the die
- *   face; in the example's strip at 2.1 ms, which has passed the whole die, the ratio is 1.25.
+ *   face; in the example's strip at 2.1 ms, which has passed the whole die, the strain still grows
+ *   from the axis to the die side.
  * Reported: the ram's force (die plus container friction).
  */
 #include "verify_util.h"
@@ -76,8 +82,11 @@ int main(int argc, char **argv)
     const double f_slab = H0 * 2 * k * (1 + B) / B * (pow(R, B) - 1);
     const double ratio = f_die / f_slab;
     char q[128];
-    snprintf(q, sizeof q, "die force / slab method (%.1f kN/m), band [1.3, 1.7]", f_slab / 1e3);
-    int ok = vu_report(bench, q, ratio, 1.5, ratio - 1.5, 0.2, secs);
+    snprintf(q, sizeof q, "die force / slab method (%.1f kN/m), band [1.1, 1.35]", f_slab / 1e3);
+    int ok = vu_report(bench, q, ratio, 1.225, ratio - 1.225, 0.125, secs);
+    /* the top of the upper bound's range with friction (friction factor m = 0.2) */
+    vu_report(bench, "die force / upper bound with friction (212 kN/m)", f_die / 212.0e3, 1, f_die / 212.0e3 - 1,
+              -1, secs);
     vu_report(bench, "ram force (kN/m)", f_ram / 1e3, f_slab / 1e3, f_ram / f_slab - 1, -1, secs);
 
     /* the strip beyond the land, without its last 2 mm (the nose) */
