@@ -13,15 +13,18 @@
  *   F_c = k t cos(beta - rake) / (sin(phi) cos(phi + beta - rake)), phi = 45 deg + rake/2 - beta/2,
  *   beta = atan(mu), k = sigma_0 / sqrt(3): 107.1 kN/m (Lee and Shaffer's slip-line field gives 1.002
  *   times that). Merchant's single shear plane is what a sharp tool does to a rigid-perfectly plastic
- *   material; pmech at 1 mm cells (the depth of cut is two cells) comes out 2.6 (sharp tip) and 2.7
+ *   material; pmech at 1 mm cells (the depth of cut is two cells) comes out 2.36 (sharp tip) and 2.48
  *   (round tip) times higher and still rising at 0.65 ms: the tip is not resolved, so material of the
- *   layer being cut is drawn under the tool's clearance face and ploughed (examples/cutting at 0.5 mm
- *   cells: docs/verification.md). The band [2.2, 3.1] times Merchant is a regression guard of this
- *   mesh's answer, not an agreement: it rejects a tool that does not touch the material (0) and an
- *   elastic workpiece that never yields (far above);
+ *   layer being cut is drawn under the tool's clearance face and ploughed (examples/cutting: 1.70 at
+ *   0.5 mm cells, 1.47 at 0.25 mm; docs/verification.md). Pure FLIP, as the example: with 5 % PIC per
+ *   step the force grew as the step shrank (0.5 mm: 1.86 at CFL 0.3, 2.04 at 0.1); here it gave 2.61
+ *   (sharp) and 2.73 (round).
+ *   The band [2.1, 2.7] times Merchant is a regression guard of this mesh's answer, not an agreement:
+ *   it rejects a tool that does not touch the material (0) and an elastic workpiece that never yields
+ *   (far above);
  * - a cut and a chip: the mean height of the cut surface (the highest points of the workpiece behind
  *   the tip; their centres lie a quarter cell below the surface) within a cell of the tip's (measured
- *   -0.47 sharp, -0.16 round), and a chip rising at least 1 mm above the plate's top (1.5 and 1.4 mm);
+ *   -0.48 sharp, -0.15 round), and a chip rising at least 1 mm above the plate's top (1.5 and 1.4 mm);
  * Reported: the thrust force, the cut surface's RMS roughness (deviation from a fitted line) for both
  * tips.
  */
@@ -135,10 +138,10 @@ int main(int argc, char **argv)
     for (int sharp = 1; sharp >= 0; sharp--) {
         const cut_result r = run(sharp);
         char q[160];
-        snprintf(q, sizeof q, "%s: cutting force / Merchant (%.1f kN/m), band [2.2, 3.1]", names[sharp],
+        snprintf(q, sizeof q, "%s: cutting force / Merchant (%.1f kN/m), band [2.1, 2.7]", names[sharp],
                  fc_merchant / 1e3);
         const double ratio = r.fc / fc_merchant;
-        ok &= vu_report(bench, q, ratio, 2.65, ratio - 2.65, 0.45, r.secs);
+        ok &= vu_report(bench, q, ratio, 2.4, ratio - 2.4, 0.3, r.secs);
         snprintf(q, sizeof q, "%s: thrust force (kN/m)", names[sharp]);
         vu_report(bench, q, r.ft / 1e3, 0, r.ft / 1e3, -1, r.secs);
         snprintf(q, sizeof q, "%s: cut surface height - tip height (cells), within 1", names[sharp]);
