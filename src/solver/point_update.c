@@ -3,6 +3,8 @@
 
 #include "pmech/error.h"
 
+#include <float.h>
+
 int pm_point_plane_stress(const pm_material *m, pm_material_step *in, double *state, const double *state0,
                           size_t n_state, double s6[6], const double s0[6], double T[36])
 {
@@ -21,9 +23,11 @@ int pm_point_plane_stress(const pm_material *m, pm_material_step *in, double *st
             return 1;
         /* 1e-10 of the in-plane stress: round-off in the stress update leaves about 1e-12 to 1e-13,
          * and a tolerance below that ran every one of half the cutting case's points to the
-         * iteration limit, 4 times the cost of the whole step (examples/cutting) */
+         * iteration limit, 4 times the cost of the whole step (examples/cutting). Plus the stress of
+         * the smallest change of the stretch a double resolves near 1 (a few ulps times T_zz): points
+         * at stresses of a pascal cannot get closer than that and alternated about it */
         const double scale = fabs(s6[0]) + fabs(s6[1]) + fabs(s6[3]) + 1e-300;
-        if (fabs(s6[2]) <= 1e-10 * scale || !(T[14] > 0))
+        if (!(T[14] > 0) || fabs(s6[2]) <= 1e-10 * scale + 8 * DBL_EPSILON * T[14])
             break;
         /* The tangent relates stress to the step's strain in the current configuration, d eps_zz =
          * d dz / dz, so Newton's correction of the stretch is relative: dz *= 1 - s_zz / T_zz. The
