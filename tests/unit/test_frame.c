@@ -3,7 +3,7 @@
  * (src/io/particle_fields.c).
  *
  * Read-back: what the VTU writer wrote comes back bit for bit (doubles are copied, integers are exact
- * in a double), the time too; files that are not frames pmech writes are refused with the file's name.
+ * in a double), the time too, and the grid_speed pictures draw grid_velocity's magnitude; files that are not frames pmech writes are refused with the file's name.
  * Derived fields against closed forms: uniaxial stress -100 Pa gives p = 100/3 and q = 100; a pure
  * shear stress tau gives q = sqrt(3) tau; F = diag(2, 1, 1) gives ln 2 volumetric and (2/3) ln 2
  * deviatoric strain; simple shear gamma gives 0 and (2/sqrt 3) asinh(gamma/2); a rotation gives 0 and
@@ -25,6 +25,7 @@
 #include "pmech/error.h"
 #include "pmech/frame.h"
 #include "pmech/grid.h"
+#include "pmech/render.h"
 
 #define TOL 1e-12
 
@@ -111,6 +112,15 @@ static void particles_come_back_as_written(void **state)
         assert_true(pr[i] == pm_pf_pressure(p.stress + PM_NS * i));
         assert_true(q[i] == pm_pf_q(p.stress + PM_NS * i));
     }
+    /* grid_speed, as pictures draw it: the magnitude of grid_velocity, in m/s */
+    double gs[7];
+    const char *unit = NULL;
+    int cat = -1;
+    assert_int_equal(pm_frame_field(f, "grid_speed", gs, &unit, &cat), PM_OK);
+    assert_string_equal(unit, "m/s");
+    assert_int_equal(cat, 0);
+    for (size_t i = 0; i < n; i++)
+        near(gs[i], hypot(p.v_grid[PM_DIM * i], p.v_grid[PM_DIM * i + 1]));
     assert_null(pm_frame_array(f, "no_such_array", NULL));
     size_t names = pm_frame_n_arrays(f);
     assert_int_equal(names, 16);
