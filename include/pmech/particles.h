@@ -42,6 +42,9 @@ typedef struct pm_particles {
     double *x0;        /**< initial position, 2 per particle (displacement = x - x0) */
     double *v;         /**< velocity, 2 per particle */
     double *a;         /**< acceleration, 2 per particle (predictor-corrector schemes) */
+    double *v_grid;    /**< the velocity the position moved with over the last step, PM_DIM per particle: the
+                            grid's velocity interpolated at the point (explicit), the step's displacement over
+                            dt (implicit). Output only; unlike v it carries no FLIP velocity the grid never saw */
     double *mass;      /**< mass (per radian in axisymmetric runs) */
     double *vol;       /**< current volume */
     double *vol0;      /**< initial volume */

@@ -33,12 +33,14 @@ typedef enum {
     PM_FIELD_SXX = 9,               /**< horizontal (radial) stress, Pa */
     PM_FIELD_SZZ = 10,              /**< out-of-plane (hoop) stress, Pa */
     PM_FIELD_SXY = 11,              /**< shear stress, Pa */
-    PM_FIELD_MATERIAL = 12          /**< one colour per material */
+    PM_FIELD_MATERIAL = 12,         /**< one colour per material */
+    PM_FIELD_GRID_SPEED = 13        /**< |v_grid|, m/s: the speed each point's position moved with over the last
+                                         step, without the FLIP velocity the grid never carried */
 } pm_field;
 
 /**
  * @brief Parse a field name ("body", "speed", "pressure", "plastic_strain", "syy", "displacement", "q",
- *        "volumetric_strain", "deviatoric_strain", "sxx", "szz", "sxy", "material").
+ *        "volumetric_strain", "deviatoric_strain", "sxx", "szz", "sxy", "material", "grid_speed").
  * @return the field, or -1 for an unknown name
  */
 int pm_field_from_name(const char *name);

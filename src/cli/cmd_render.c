@@ -15,8 +15,8 @@ void pm_cmd_render_usage(FILE *f)
     fprintf(f, "usage: " RENDER_USAGE
                "  Draw every frame of the run in DIR (its particles.pvd) coloured by field F, as\n"
                "  OUTDIR/F_NNNNNN.png, all with one colour range, without running anything again.\n"
-               "  -f, --field F        body, material, speed, displacement, pressure, q, sxx, syy, szz, sxy,\n"
-               "                       plastic_strain, volumetric_strain, deviatoric_strain; any array of\n"
+               "  -f, --field F        body, material, speed, grid_speed, displacement, pressure, q, sxx, syy,\n"
+               "                       szz, sxy, plastic_strain, volumetric_strain, deviatoric_strain; any array of\n"
                "                       the frames (mass, volume); a vector's magnitude (velocity); or one\n"
                "                       component as ARRAY.C (velocity.y, stress.xy)\n"
                "  --range LO HI        fixed colour range in the field's SI unit (default: the smallest to\n"

@@ -24,7 +24,7 @@ typedef struct field_row {
 #define FIELD(member, type, w) { #member, offsetof(pm_particles, member), sizeof(type), (w) }
 static const field_row fields[] = {
     FIELD(x, double, PM_DIM),      FIELD(x0, double, PM_DIM),   FIELD(v, double, PM_DIM),
-    FIELD(a, double, PM_DIM),      FIELD(mass, double, 1),      FIELD(vol, double, 1),
+    FIELD(a, double, PM_DIM),      FIELD(v_grid, double, PM_DIM), FIELD(mass, double, 1),   FIELD(vol, double, 1),
     FIELD(vol0, double, 1),        FIELD(F, double, PM_NF),     FIELD(stress, double, PM_NS),
     FIELD(eps_p, double, 1),       FIELD(state, double, 0),     FIELD(hsize, double, PM_DIM),
     FIELD(C, double, AFFINE),

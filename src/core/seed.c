@@ -254,6 +254,9 @@ static size_t seed_body(const pm_case *c, const pm_case_body *body, int32_t b, c
                 p->x[2 * k + 1] = p->x0[2 * k + 1] = cp.x[q][1];
                 p->v[2 * k] = body->velocity[0];
                 p->v[2 * k + 1] = body->velocity[1];
+                /* before its first step a point moves with the velocity it is given */
+                for (int d = 0; d < PM_DIM; d++)
+                    p->v_grid[PM_DIM * k + d] = body->velocity[d];
                 p->vol[k] = p->vol0[k] = cp.w[q] * r;
                 p->mass[k] = m->density * p->vol[k];
                 p->hsize[2 * k] = cp.hs[q][0];

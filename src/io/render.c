@@ -27,6 +27,7 @@ static const struct field_info {
     [PM_FIELD_SZZ] = {"szz", "Pa"},
     [PM_FIELD_SXY] = {"sxy", "Pa"},
     [PM_FIELD_MATERIAL] = {"material", ""},
+    [PM_FIELD_GRID_SPEED] = {"grid_speed", "m/s"},
 };
 #define N_FIELDS ((int)(sizeof fields / sizeof fields[0]))
 
@@ -53,6 +54,15 @@ const char *const *pm_field_names(void)
 
 static int is_category(pm_field f) { return f == PM_FIELD_BODY || f == PM_FIELD_MATERIAL; }
 
+/* Length of one particle's vector (PM_DIM entries). */
+static double norm_of(const double *a)
+{
+    double s = 0;
+    for (int d = 0; d < PM_DIM; d++)
+        s += a[d] * a[d];
+    return sqrt(s);
+}
+
 /* The field's value at particle i. */
 static double particle_value(const pm_particles *p, size_t i, pm_field f)
 {
@@ -62,6 +72,7 @@ static double particle_value(const pm_particles *p, size_t i, pm_field f)
     case PM_FIELD_BODY: return p->body[i];
     case PM_FIELD_MATERIAL: return p->material[i];
     case PM_FIELD_SPEED: return hypot(p->v[PM_DIM * i], p->v[PM_DIM * i + 1]);
+    case PM_FIELD_GRID_SPEED: return norm_of(p->v_grid + PM_DIM * i);
     case PM_FIELD_PRESSURE: return pm_pf_pressure(s);
     case PM_FIELD_PLASTIC_STRAIN: return p->eps_p[i];
     case PM_FIELD_SYY: return s[PM_SYY];
@@ -187,8 +198,8 @@ static const char *array_unit(const char *array)
 {
     static const struct {
         const char *array, *unit;
-    } units[] = {{"displacement", "m"}, {"velocity", "m/s"}, {"stress", "Pa"}, {"pressure", "Pa"}, {"q", "Pa"},
-                 {"plastic_strain", "-"}, {"volumetric_strain", "-"}, {"deviatoric_strain", "-"}, {"half_size", "m"},
+    } units[] = {{"displacement", "m"}, {"velocity", "m/s"}, {"grid_velocity", "m/s"}, {"stress", "Pa"},
+                 {"pressure", "Pa"}, {"q", "Pa"}, {"plastic_strain", "-"}, {"volumetric_strain", "-"}, {"deviatoric_strain", "-"}, {"half_size", "m"},
                  {"deformation_gradient", "-"}};
     for (size_t k = 0; k < sizeof units / sizeof units[0]; k++)
         if (!strcmp(array, units[k].array))
@@ -238,6 +249,7 @@ int pm_frame_field(const pm_frame *f, const char *field, double *out, const char
         const char *array;
         int comp; /* -1: magnitude, -2: the scalar itself */
     } map[] = {{PM_FIELD_BODY, "body", -2},       {PM_FIELD_MATERIAL, "material", -2}, {PM_FIELD_SPEED, "velocity", -1},
+               {PM_FIELD_GRID_SPEED, "grid_velocity", -1},
                {PM_FIELD_DISPLACEMENT, "displacement", -1}, {PM_FIELD_SXX, "stress", 0}, {PM_FIELD_SYY, "stress", 1},
                {PM_FIELD_SZZ, "stress", 2},       {PM_FIELD_SXY, "stress", 3}};
     const size_t n = pm_frame_n_points(f);

@@ -151,6 +151,7 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
     const pm_vtu_array arrays[] = {
         { "displacement", PM_VTU_F64, 3, NULL },
         { "velocity", PM_VTU_F64, 3, NULL },
+        { "grid_velocity", PM_VTU_F64, 3, NULL },
         { "stress", PM_VTU_F64, PM_NS, stress_names },
         { "plastic_strain", PM_VTU_F64, 1, NULL },
         { "material", PM_VTU_I32, 1, NULL },
@@ -181,6 +182,10 @@ int pm_vtu_write_particles(const char *path, const pm_particles *p, void *scratc
     }
     if (!rc) {
         fill_vec3(scratch, p->v, NULL, n);
+        rc = pm_vtu_write_block(f, scratch, 3 * n * sizeof(double));
+    }
+    if (!rc) {
+        fill_vec3(scratch, p->v_grid, NULL, n);
         rc = pm_vtu_write_block(f, scratch, 3 * n * sizeof(double));
     }
     if (!rc)

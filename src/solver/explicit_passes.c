@@ -417,6 +417,7 @@ PM_BODY void usl_finish_body(pm_sim *s, size_t lo, size_t hi, double dt, int mus
         o->wave = w > o->wave ? w : o->wave;
         for (int d = 0; d < PM_DIM; d++)
             p->x[PM_DIM * i + d] += dt * vg[d];
+        memcpy(p->v_grid + PM_DIM * i, vg, sizeof vg); /* output only: what moved the point */
     }
 }
 
@@ -545,7 +546,7 @@ void pm_xp_g2p_usf(pm_sim *s, double dt)
 #pragma omp for schedule(static)
         for (size_t i = 0; i < p->n; i++) {
             stencil_at(s, i, &st);
-            double v[PM_DIM], a[PM_DIM];
+            double *v = p->v_grid + PM_DIM * i, a[PM_DIM]; /* kept: the velocity the point moves with */
             gather(&st, nd->vel_new, nd->acc, v, a);
             for (int d = 0; d < PM_DIM; d++) {
                 p->v[PM_DIM * i + d] += dt * a[d];
@@ -565,7 +566,7 @@ void pm_xp_g2p_newmark(pm_sim *s, double dt, double gamma)
 #pragma omp for schedule(static)
         for (size_t i = 0; i < p->n; i++) {
             stencil_at(s, i, &st);
-            double vg[PM_DIM], ag[PM_DIM];
+            double *vg = p->v_grid + PM_DIM * i, ag[PM_DIM]; /* kept: the velocity the point moves with */
             gather(&st, nd->vel, nd->acc, vg, ag);
             double *v = p->v + PM_DIM * i, *a = p->a + PM_DIM * i;
             for (int d = 0; d < PM_DIM; d++) {

@@ -241,9 +241,10 @@ static int convect(pm_sim *s, pm_implicit_ws *w)
                 a[d] += N * (c0 * (w->du[q] - dt * w->vn[q]) - w->an[q]);
             }
         }
-        double *x = p->x + 2 * i, *v = p->v + 2 * i, *ap = p->a + 2 * i;
+        double *x = p->x + 2 * i, *v = p->v + 2 * i, *ap = p->a + 2 * i, *vg = p->v_grid + PM_DIM * i;
         for (int d = 0; d < 2; d++) {
             x[d] += u[d];
+            vg[d] = u[d] / dt; /* quasi-static: per unit of the pseudo-time */
             if (w->quasi_static) {
                 v[d] = ap[d] = 0.0;
             } else {

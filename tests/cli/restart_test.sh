@@ -7,8 +7,10 @@
 # friction sides (the touching points' impulses and the wall profiles carry over steps), two
 # bodies in contact (contact_pairs), MPM with LME (each particle's kept stencil), APIC (each particle's
 # affine matrix) and XPIC, GMM with MLS and with
-# LME, RKPM, implicit GMM (the node cloud, its cell list, the nodes' velocity and acceleration history). What is not covered (a strength reduction, another case, a
-# damaged file) is refused with exit 2.
+# LME, RKPM, implicit GMM (the node cloud, its cell list, the nodes' velocity and acceleration history), and a
+# checkpoint of the same layout written before /particles/v_grid existed (output only: the outputs are the same
+# bytes, the first step after the restart gives it again). What is not covered (a strength reduction, another
+# case, a damaged file) is refused with exit 2.
 # usage: restart_test.sh PMECH SOURCE_DIR WORK_DIR
 set -u
 PMECH=$1; SRC=$2; WORK=$3
@@ -27,8 +29,23 @@ same_outputs() {
   done
   return $bad
 }
-# case name, signal, frame to wait for, exit status[, threads]: a full run, a run stopped by the signal once that frame exists,
-# its continuation; then the two directories compared
+# delete /particles/v_grid from checkpoint $1 (HDF5's own library, as pmech links it), as in a file written
+# before the field existed
+drop_v_grid() {
+  python3 - "$1" <<'PY'
+import ctypes, ctypes.util, sys
+lib = ctypes.CDLL(ctypes.util.find_library("hdf5_serial") or ctypes.util.find_library("hdf5"))
+lib.H5Fopen.restype = ctypes.c_int64
+lib.H5Fopen.argtypes = [ctypes.c_char_p, ctypes.c_uint, ctypes.c_int64]
+lib.H5Ldelete.argtypes = [ctypes.c_int64, ctypes.c_char_p, ctypes.c_int64]
+lib.H5Fclose.argtypes = [ctypes.c_int64]
+f = lib.H5Fopen(sys.argv[1].encode(), 1, 0)  # H5F_ACC_RDWR, H5P_DEFAULT
+sys.exit(0 if f >= 0 and lib.H5Ldelete(f, b"/particles/v_grid", 0) >= 0 and lib.H5Fclose(f) >= 0 else 1)
+PY
+}
+# case name, signal, frame to wait for, exit status[, threads[, "older": the checkpoint without v_grid]]: a
+# full run, a run stopped by the signal once that frame exists, its continuation; then the two directories
+# compared
 stop_and_continue() {
   name=$1; sig=$2; frame=$3; code=$4; threads=${5:-1}
   "$PMECH" run "$name.json" -o "$name.full" --quiet --threads $threads >/dev/null 2>&1
@@ -39,6 +56,10 @@ stop_and_continue() {
   check "$name: SIG$sig stops the run mid-way (exit $rc)" [ $rc -eq "$code" ]
   check "$name: a checkpoint was written" [ -f "$name.part/checkpoint.h5" ]
   cp "$name.part/checkpoint.h5" "$name.stop.h5" 2>/dev/null
+  if [ "${6:-}" = older ]; then
+    check "$name: /particles/v_grid deleted from the checkpoint" drop_v_grid "$name.part/checkpoint.h5"
+    check "$name: the checkpoint has no /particles/v_grid" sh -c "! h5dump -H -d /particles/v_grid $name.part/checkpoint.h5 >/dev/null 2>&1"
+  fi
   "$PMECH" run "$name.json" --restart "$name.part" --quiet --threads $threads >/dev/null 2>err.txt
   rc=$?
   check "$name: the restart runs to the end (exit $rc)" [ $rc -eq 0 ]
@@ -114,6 +135,8 @@ for t in ("apic", "xpic"):
     c = json.load(open("musl_mc.json"))
     c["analysis"]["transfer"] = t
     json.dump(c, open("musl_" + t + ".json", "w"), indent=1)
+# a checkpoint written before /particles/v_grid existed
+json.dump(json.load(open("musl_mc.json")), open("musl_older.json", "w"), indent=1)
 PY
 # two threads: the colour blocks of the parallel scatter decide the order of additions into shared nodes
 stop_and_continue musl_mc INT particles_000004.vtu 130 2
@@ -126,6 +149,7 @@ stop_and_continue periodic KILL particles_000016.vtu 137
 stop_and_continue mpm_lme INT particles_000012.vtu 130 2
 stop_and_continue musl_apic INT particles_000004.vtu 130 2
 stop_and_continue musl_xpic INT particles_000004.vtu 130 2
+stop_and_continue musl_older INT particles_000004.vtu 130 1 older
 # the meshfree runs, with the number of cell-list builds: some before the stop and more after it, so the
 # continued run goes on from a restored cell list and rebuilds it as the uninterrupted run did
 builds() { h5dump -a /meshfree/builds "$1" 2>/dev/null | sed -n 's/.*(0): \([0-9]*\).*/\1/p'; }
@@ -145,6 +169,8 @@ check "h5dump reads /particles/C as $n x 4 with APIC" sh -c \
   "h5dump -H -d /particles/C musl_apic.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 4 ) / ( $n, 4 ) }'"
 check "h5dump reads /particles/C as $n x 0 with FLIP (no affine matrices)" sh -c \
   "h5dump -H -d /particles/C musl_mc.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 0 ) / ( $n, 0 ) }'"
+check "h5dump reads /particles/v_grid as $n x 2" sh -c \
+  "h5dump -H -d /particles/v_grid musl_mc.full/checkpoint.h5 | grep -q 'SIMPLE { ( $n, 2 ) / ( $n, 2 ) }'"
 check "h5dump reads /time/t as the end time" sh -c \
   "h5dump -a /time/t musl_mc.full/checkpoint.h5 | grep -q '(0): 0.6\$'"
 

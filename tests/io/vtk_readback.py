@@ -5,7 +5,7 @@ usage: vtk_readback.py DIR N_PARTICLES
 
 Checks that particles.pvd is a valid Collection whose every listed frame exists, and that VTK's
 vtkXMLUnstructuredGridReader reads each frame with N_PARTICLES points and N_PARTICLES vertex cells
-and the point arrays displacement (3), velocity (3), stress (4: xx, yy, zz, xy), plastic_strain,
+and the point arrays displacement (3), velocity (3), grid_velocity (3), stress (4: xx, yy, zz, xy), plastic_strain,
 material (Int32), body (Int32), mass, volume and id (Int32, no two particles of a frame alike) and the
 derived fields, each with one finite tuple per particle. N_PARTICLES is one count for every frame, or a
 comma-separated list of one count per frame in the order particles.pvd lists them (runs whose sources
@@ -41,6 +41,7 @@ except ImportError:
 EXPECTED = {  # name: (components, VTK data type or None for any floating type)
     "displacement": (3, None),
     "velocity": (3, None),
+    "grid_velocity": (3, None),
     "stress": (4, None),
     "plastic_strain": (1, None),
     "material": (1, vtk.VTK_INT),

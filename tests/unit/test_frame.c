@@ -3,7 +3,7 @@
  * (src/io/particle_fields.c).
  *
  * Read-back: what the VTU writer wrote comes back bit for bit (doubles are copied, integers are exact
- * in a double), the time too; files that are not frames pmech writes are refused with the file's name.
+ * in a double), the time too, and the grid_speed pictures draw grid_velocity's magnitude; files that are not frames pmech writes are refused with the file's name.
  * Derived fields against closed forms: uniaxial stress -100 Pa gives p = 100/3 and q = 100; a pure
  * shear stress tau gives q = sqrt(3) tau; F = diag(2, 1, 1) gives ln 2 volumetric and (2/3) ln 2
  * deviatoric strain; simple shear gamma gives 0 and (2/sqrt 3) asinh(gamma/2); a rotation gives 0 and
@@ -25,6 +25,7 @@
 #include "pmech/error.h"
 #include "pmech/frame.h"
 #include "pmech/grid.h"
+#include "pmech/render.h"
 
 #define TOL 1e-12
 
@@ -42,6 +43,7 @@ static void make_particles(pm_particles *p, size_t n)
             p->x[PM_DIM * i + d] = 0.25 * (double)i + d;
             p->x0[PM_DIM * i + d] = 0.2 * (double)i;
             p->v[PM_DIM * i + d] = -1.5 * (double)i + 0.1 * d;
+            p->v_grid[PM_DIM * i + d] = 0.75 * (double)i - 0.3 * d;
             p->hsize[PM_DIM * i + d] = 0.125;
         }
         for (int k = 0; k < PM_NS; k++)
@@ -72,6 +74,9 @@ static void particles_come_back_as_written(void **state)
     int nc;
     const double *x = pm_frame_points(f), *v = pm_frame_array(f, "velocity", &nc);
     assert_int_equal(nc, 3);
+    const double *vg = pm_frame_array(f, "grid_velocity", &nc);
+    assert_int_equal(nc, 3);
+    assert_non_null(vg);
     const double *s = pm_frame_array(f, "stress", &nc);
     assert_int_equal(nc, PM_NS);
     const double *body = pm_frame_array(f, "body", &nc), *F = pm_frame_array(f, "deformation_gradient", &nc);
@@ -94,6 +99,7 @@ static void particles_come_back_as_written(void **state)
         for (int d = 0; d < PM_DIM; d++) {
             assert_true(x[3 * i + d] == p.x[PM_DIM * i + d]);
             assert_true(v[3 * i + d] == p.v[PM_DIM * i + d]);
+            assert_true(vg[3 * i + d] == p.v_grid[PM_DIM * i + d]);
             assert_true(hs[PM_DIM * i + d] == p.hsize[PM_DIM * i + d]);
         }
         assert_true(x[3 * i + 2] == 0);
@@ -106,9 +112,18 @@ static void particles_come_back_as_written(void **state)
         assert_true(pr[i] == pm_pf_pressure(p.stress + PM_NS * i));
         assert_true(q[i] == pm_pf_q(p.stress + PM_NS * i));
     }
+    /* grid_speed, as pictures draw it: the magnitude of grid_velocity, in m/s */
+    double gs[7];
+    const char *unit = NULL;
+    int cat = -1;
+    assert_int_equal(pm_frame_field(f, "grid_speed", gs, &unit, &cat), PM_OK);
+    assert_string_equal(unit, "m/s");
+    assert_int_equal(cat, 0);
+    for (size_t i = 0; i < n; i++)
+        near(gs[i], hypot(p.v_grid[PM_DIM * i], p.v_grid[PM_DIM * i + 1]));
     assert_null(pm_frame_array(f, "no_such_array", NULL));
     size_t names = pm_frame_n_arrays(f);
-    assert_int_equal(names, 15);
+    assert_int_equal(names, 16);
     assert_string_equal(pm_frame_array_name(f, 0, &nc), "displacement");
     assert_null(pm_frame_array_name(f, names, &nc));
     pm_frame_free(f);
@@ -118,7 +133,7 @@ static void particles_come_back_as_written(void **state)
 }
 
 /* A model's history variables come back as one array of n_state components; a run whose models
- * keep none writes no such array (above: 15 arrays). */
+ * keep none writes no such array (above: 16 arrays). */
 static void material_state_comes_back(void **state)
 {
     (void)state;
@@ -131,7 +146,7 @@ static void material_state_comes_back(void **state)
     assert_int_equal(pm_vtu_write_particles("state_test.vtu", &p, scratch, 0), PM_OK);
     pm_frame *f = NULL;
     assert_int_equal(pm_frame_read("state_test.vtu", &f), PM_OK);
-    assert_int_equal(pm_frame_n_arrays(f), 16);
+    assert_int_equal(pm_frame_n_arrays(f), 17);
     int nc;
     const double *st = pm_frame_array(f, "material_state", &nc);
     assert_non_null(st);
