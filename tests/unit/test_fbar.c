@@ -76,6 +76,16 @@ static void step_F(const char *fbar, const char *extra, double *F, size_t *n, in
 
 static double det2(const double *F) { return F[PM_FXX] * F[PM_FYY] - F[PM_FXY] * F[PM_FYX]; }
 
+/* Each cell's volume-weighted mean of the unaveraged det F: sum[c] = {sum V det F, sum V}. */
+static void cell_sums(const double *F0, const int32_t *cell, const double *vol, size_t n, double sum[16][2])
+{
+    memset(sum, 0, 16 * sizeof sum[0]);
+    for (size_t i = 0; i < n; i++) {
+        sum[cell[i]][0] += vol[i] * det2(F0 + PM_NF * i);
+        sum[cell[i]][1] += vol[i];
+    }
+}
+
 static void averages_volume_keeps_shape(void **state)
 {
     (void)state;
@@ -87,11 +97,7 @@ static void averages_volume_keeps_shape(void **state)
     step_F("cell", "", F1, &n1, cell1, vol);
     assert_int_equal(n0, 64);
     assert_int_equal(n1, n0);
-    memset(sum, 0, sizeof sum);
-    for (size_t i = 0; i < n0; i++) {
-        sum[cell[i]][0] += vol[i] * det2(F0 + PM_NF * i);
-        sum[cell[i]][1] += vol[i];
-    }
+    cell_sums(F0, cell, vol, n0, sum);
     double spread = 0;
     for (size_t i = 0; i < n0; i++) {
         const double Jc = sum[cell[i]][0] / sum[cell[i]][1], J0 = det2(F0 + PM_NF * i), J1 = det2(F1 + PM_NF * i);
@@ -116,11 +122,7 @@ static void own_share_keeps_part_of_own_volume_change(void **state)
     step_F("cell", "", F1, &n1, cell1, vol);
     step_F("cell", ", \"fbar_own_share\": 0.25", F2, &n1, cell1, vol);
     assert_int_equal(n1, n0);
-    memset(sum, 0, sizeof sum);
-    for (size_t i = 0; i < n0; i++) {
-        sum[cell[i]][0] += vol[i] * det2(F0 + PM_NF * i);
-        sum[cell[i]][1] += vol[i];
-    }
+    cell_sums(F0, cell, vol, n0, sum);
     double missed = 0;
     for (size_t i = 0; i < n0; i++) {
         const double Jc = sum[cell[i]][0] / sum[cell[i]][1], J0 = det2(F0 + PM_NF * i), J2 = det2(F2 + PM_NF * i);
