@@ -71,7 +71,7 @@ static double particle_value(const pm_particles *p, size_t i, pm_field f)
     switch (f) {
     case PM_FIELD_BODY: return p->body[i];
     case PM_FIELD_MATERIAL: return p->material[i];
-    case PM_FIELD_SPEED: return hypot(p->v[PM_DIM * i], p->v[PM_DIM * i + 1]);
+    case PM_FIELD_SPEED: return norm_of(p->v + PM_DIM * i);
     case PM_FIELD_GRID_SPEED: return norm_of(p->v_grid + PM_DIM * i);
     case PM_FIELD_PRESSURE: return pm_pf_pressure(s);
     case PM_FIELD_PLASTIC_STRAIN: return p->eps_p[i];
@@ -198,9 +198,10 @@ static const char *array_unit(const char *array)
 {
     static const struct {
         const char *array, *unit;
-    } units[] = {{"displacement", "m"}, {"velocity", "m/s"}, {"grid_velocity", "m/s"}, {"stress", "Pa"},
-                 {"pressure", "Pa"}, {"q", "Pa"}, {"plastic_strain", "-"}, {"volumetric_strain", "-"}, {"deviatoric_strain", "-"}, {"half_size", "m"},
-                 {"deformation_gradient", "-"}};
+    } units[] = {{"displacement", "m"},         {"velocity", "m/s"},          {"grid_velocity", "m/s"},
+                 {"stress", "Pa"},              {"pressure", "Pa"},           {"q", "Pa"},
+                 {"plastic_strain", "-"},       {"volumetric_strain", "-"},   {"deviatoric_strain", "-"},
+                 {"half_size", "m"},            {"deformation_gradient", "-"}};
     for (size_t k = 0; k < sizeof units / sizeof units[0]; k++)
         if (!strcmp(array, units[k].array))
             return units[k].unit;
