@@ -229,6 +229,7 @@ typedef struct pm_case {
         pm_newton_opts newton;
         int load_steps;
         int density_from_positions;  /**< 1: volumes from the density of particle positions (seed 004 eq. 13) */
+        int apart_from_cell;      /**< 1: a point is apart where the densest node of its cell reads so (apart_measure) */
         pm_fbar_mode fbar;        /**< volumetric averaging against locking (MPM only) */
         double fbar_own_share;    /**< share s of each particle's own volume change F-bar keeps: J_cell^(1-s) J_p^s */
         pm_srf_opts strength_reduction;

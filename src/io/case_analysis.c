@@ -16,6 +16,7 @@ static const char *const density_updates[] = {"deformation", "positions", NULL};
 static const char *const analysis_types[] = {"explicit", "implicit", "quasi_static", NULL};
 static const char *const schemes[] = {"musl", "usl", "usf", "newmark_pc", NULL};
 static const char *const fbar_modes[] = {"none", "cell", NULL};
+static const char *const apart_measures[] = {"point", "cell", NULL};
 static const char *const transfers[] = {"flip", "apic", "xpic", NULL};
 
 /*
@@ -131,6 +132,10 @@ int pm_case_parse_analysis(pm_case *c, json_t *a)
                             "%s: analysis.density_update: \"positions\" needs the cells of method 'mpm'; with gmm "
                             "and rkpm use \"deformation\" (volume from det F)",
                             c->file);
+    pm_check(jr_enum(&cx, a, "apart_measure", 0, apart_measures, 0, &c->analysis.apart_from_cell));
+    if (json_object_get(a, "apart_measure") && !c->analysis.density_from_positions)
+        return pm_case_fail(c->file, "analysis.apart_measure", "judges points apart by the density of the positions; "
+                            "set density_update to \"positions\" or remove it", NULL);
     pm_check(jr_enum(&cx, a, "fbar", 0, fbar_modes, PM_FBAR_NONE, &v));
     c->analysis.fbar = (pm_fbar_mode)v;
     if (c->analysis.fbar != PM_FBAR_NONE && c->method != PM_METHOD_MPM)

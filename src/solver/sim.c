@@ -336,6 +336,21 @@ void pm_sim_sort_particles(pm_sim *s)
         pm_particles_permute(p, s->perm, s->scratch, s->iscratch);
 }
 
+/* The density by which a point is judged apart (analysis.apart_measure): its own, or with "cell" the
+ * densest node of its cell, so that a point the deposit's free surface or the points' bunching leaves
+ * in a thin part of a cell is not read apart while a node of its cell is packed. */
+static double apart_density(const pm_sim *s, size_t i)
+{
+    if (!s->c->analysis.apart_from_cell)
+        return s->rho_p[i];
+    const pm_grid *g = &s->grid;
+    const int32_t *node = g->conn + (size_t)g->nodes_per_cell * (size_t)s->p.cell[i];
+    double r = 0;
+    for (int k = 0; k < g->nodes_per_cell; k++)
+        r = fmax(r, s->rho_node[node[k]]);
+    return r;
+}
+
 int pm_sim_volumes_from_positions(pm_sim *s)
 {
     pm_particles *p = &s->p;
@@ -347,7 +362,7 @@ int pm_sim_volumes_from_positions(pm_sim *s)
         p->vol[i] = p->mass[i] / s->rho_p[i];
         const pm_material *m = &s->c->materials[p->material[i]];
         if (m->ops->density_state)
-            m->ops->density_state(m, s->rho_p[i] / m->density, p->state + p->n_state * i);
+            m->ops->density_state(m, apart_density(s, i) / m->density, p->state + p->n_state * i);
     }
     return PM_OK;
 }

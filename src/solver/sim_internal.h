@@ -93,7 +93,9 @@ struct pm_sim {
 /**
  * @brief Set every particle's volume to mass / density, the density interpolated from nodal densities
  *        of the particle positions (seed 004 eqs. 12-13); the case's `density_update: positions`.
- *        Needs located particles (connect).
+ *        A material with a density_state (granular) also takes that density, or with
+ *        `apart_measure: cell` the densest node of the particle's cell, as its volume change where it
+ *        shows the particle apart. Needs located particles (connect).
  */
 int pm_sim_volumes_from_positions(pm_sim *s);
 
