@@ -12,8 +12,7 @@ static const char *const top_keys[] = {"title", "dimension", "formulation", "met
 static const char *const analysis_keys[] = {"type", "scheme", "end_time", "dt", "cfl", "gravity",
                                             "gravity_ramp_time", "damping", "flip", "newton", "load_steps",
                                             "density_update", "apart_measure", "strength_reduction", "fbar",
-                                            "fbar_own_share",
-                                            "transfer", "xpic_order", "max_steps", NULL};
+                                            "fbar_own_share", "transfer", "xpic_order", "max_steps", NULL};
 static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "displacement_ratio", NULL};
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
                                           "max_step_cuts", "absolute_tolerance", NULL};

@@ -56,9 +56,22 @@ static void angles(sink *s, const pm_case *c, size_t k)
     }
 }
 
+/* apart_measure "cell" acts through a material's density_state (granular) and does nothing without one */
+static void apart_measure(sink *s, const pm_case *c)
+{
+    if (!c->analysis.apart_from_cell)
+        return;
+    for (size_t k = 0; k < c->n_materials && c->materials; k++)
+        if (c->materials[k].ops && c->materials[k].ops->density_state)
+            return;
+    add(s, "%s: analysis.apart_measure is \"cell\", but no material takes its state from the positions' "
+        "density (only 'granular' does): the key changes nothing", c->file);
+}
+
 size_t pm_case_warnings(const pm_case *c, char (*out)[PM_WARNING_LEN], size_t cap)
 {
     sink s = {out, cap, 0};
+    apart_measure(&s, c);
     for (size_t k = 0; k < c->n_materials && c->materials; k++) {
         stiffness(&s, c, k);
         angles(&s, c, k);

@@ -76,6 +76,10 @@ static void each_rule_fires(void **state)
     expect_one("materials[0].friction_angle", "0.5236",
                (const char *const[]){"materials[0].friction_angle", "0.5236", "radians", "30", NULL});
     expect_one("analysis.gravity", "[0, 9.81]", (const char *const[]){"analysis.gravity", "up", "bodies[0]", NULL});
+    expect_one("analysis",
+               "{\"type\": \"explicit\", \"end_time\": 1, \"gravity\": [0, -9.81], "
+               "\"density_update\": \"positions\", \"apart_measure\": \"cell\"}",
+               (const char *const[]){"analysis.apart_measure", "cell", "changes nothing", NULL});
     expect_one("materials[0]",
                "{\"name\": \"sand\", \"model\": \"mohr_coulomb\", \"density\": 1800, \"bulk_modulus\": 500, "
                "\"shear_modulus\": 300, \"friction_angle\": 30, \"cohesion\": 0}",
