@@ -241,6 +241,8 @@ typedef struct pm_case {
         int cells[2];
         int element;              /**< pm_element */
         char file[PM_PATH_MAX];   /**< gmsh: resolved against dir */
+        int lattice;              /**< gmsh: 1 (default) runs a mesh of equal axis-aligned quads filling its
+                                       bounding box as the structured grid of those cells */
     } grid;
     size_t n_materials;
     pm_material *materials;

@@ -124,6 +124,17 @@ int pm_grid_unstructured(pm_grid *g, size_t n_nodes, const double *x, size_t n_c
 int pm_grid_gmsh_read(pm_grid *g, const char *path);
 
 /**
+ * @brief Make an unstructured quad4 grid that is a lattice (equal axis-aligned cells filling its
+ *        bounding box, as a transfinite Gmsh rectangle) the structured grid of those cells: nodes and
+ *        cells renumbered to the `rectangle` grid's order and coordinates, node sets (with their
+ *        edges) and cell sets renumbered with them, the point locator dropped. Any other grid is left
+ *        as it is.
+ * @param g grid
+ * @return 1 if renumbered, 0 if not a lattice (unchanged), PM_ENOMEM (unchanged)
+ */
+int pm_grid_adopt_lattice(pm_grid *g);
+
+/**
  * @brief Add a named node set (nodes copied).
  * @return index of the set, or a negative status
  */

@@ -133,6 +133,22 @@ static int side_wall(const pm_case_bc *bc, int *axis, int *hi, double *mu)
     return 1;
 }
 
+/* A Gmsh group's normal that is a grid axis' (to round-off): that axis' exact normal in n. Such a
+ * group is a grid side or line drawn in the mesh, and takes their law (the material held at its touching
+ * points, between nodes) rather than the node-by-node law of curved and inclined groups, so a case on a
+ * mesh of a rectangle gives the numbers of the same case on the `rectangle` grid. */
+static int axis_aligned(const double normal[PM_DIM], double n[PM_DIM])
+{
+    for (int d = 0; d < PM_DIM; d++) {
+        if (fabs(fabs(normal[d]) - 1.0) > 1e-12)
+            continue;
+        for (int e = 0; e < PM_DIM; e++)
+            n[e] = e == d ? (normal[d] > 0 ? 1.0 : -1.0) : 0.0;
+        return 1;
+    }
+    return 0;
+}
+
 /* MPM: a friction condition holds the grid nodes of its side or line from t = 0 on. */
 static int node_set_surfaces(pm_contact *ct, const pm_case *c, pm_grid *g)
 {
@@ -142,7 +158,9 @@ static int node_set_surfaces(pm_contact *ct, const pm_case *c, pm_grid *g)
             continue;
         const pm_node_set *set;
         pm_check(pm_bc_node_set(c, b, g, &set));
-        if (set->n_edges) { /* a Gmsh group on the mesh's boundary: the normals of its edges */
+        double axis_normal[PM_DIM];
+        const int straight = axis_aligned(set->normal, axis_normal);
+        if (set->n_edges && !straight) { /* a Gmsh group on the mesh's boundary: the normals of its edges */
             const int k = pm_contact_add_edge_set(ct, g, set, bc->coefficient, PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
             if (k < 0)
                 return k;
@@ -156,8 +174,8 @@ static int node_set_surfaces(pm_contact *ct, const pm_case *c, pm_grid *g)
                                 "%s: boundary_conditions[%zu]: friction needs a grid side (x_min, x_max, "
                                 "y_min, y_max) or a line with an outward \"normal\"",
                                 c->file, b);
-        const int k = pm_contact_add_node_set(ct, set->n, set->nodes, set->normal, bc->coefficient,
-                                              PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
+        const int k = pm_contact_add_node_set(ct, set->n, set->nodes, straight ? axis_normal : set->normal,
+                                              bc->coefficient, PM_CONTACT_LAW_NODAL_COULOMB, (long)b);
         if (k < 0)
             return k;
         /* its plane, for the gaps of the material from it: through a node of the set */

@@ -38,6 +38,7 @@ int pm_case_parse_grid(pm_case *c, json_t *g)
         if (!file_exists(c->grid.file))
             return pm_error_set(PM_EINPUT, "%s: grid.file: mesh file \"%s\" not found (resolved against the case's "
                                 "directory)", c->file, c->grid.file);
+        pm_check(jr_bool(&cx, g, "lattice", 0, 1, &c->grid.lattice));
         return PM_OK;
     }
     pm_check(jr_only_keys(&cx, g, pm_case_keys(PM_KEYS_GRID_RECTANGLE)));

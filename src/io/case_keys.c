@@ -17,7 +17,7 @@ static const char *const srf_keys[] = {"min", "max", "tolerance", "criterion", "
 static const char *const newton_keys[] = {"tolerance", "displacement_tolerance", "max_iterations", "line_search",
                                           "max_step_cuts", "absolute_tolerance", NULL};
 static const char *const rect_keys[] = {"type", "origin", "size", "cells", "element", NULL};
-static const char *const gmsh_keys[] = {"type", "file", NULL};
+static const char *const gmsh_keys[] = {"type", "file", "lattice", NULL};
 static const char *const body_keys[] = {"name", "material", "shape", "particles_per_cell", "velocity",
                                         "initial_stress", "k0", "surface_y", "contact_group", NULL};
 static const char *const shape_rect[] = {"type", "min", "max", NULL}, *const shape_poly[] = {"type", "points", NULL},

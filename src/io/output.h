@@ -23,6 +23,7 @@ typedef struct pm_run_summary {
     const char *case_file;          /**< the case file as given */
     const char *title;              /**< the case's title (pictures redrawn later show it) */
     const char *formulation;        /**< plane_strain, plane_stress or axisymmetric */
+    const char *grid;               /**< structured (a rectangle, or a Gmsh lattice run as one) or unstructured */
     long steps;                     /**< time steps taken */
     double dt_min, dt_max;          /**< smallest and largest step */
     double end_time;                /**< simulated time reached */

@@ -50,6 +50,8 @@ int pm_run_json_write(const char *path, const pm_run_summary *s, const pm_probe_
         bad |= put(root, "case", str(s->case_file));
         bad |= put(root, "title", str(s->title));
         bad |= put(root, "formulation", str(s->formulation));
+        if (s->grid)
+            bad |= put(root, "grid", str(s->grid));
         bad |= put(root, "steps", json_integer(s->steps));
         bad |= put(root, "dt_min", real(s->dt_min));
         bad |= put(root, "dt_max", real(s->dt_max));

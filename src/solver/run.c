@@ -399,6 +399,7 @@ int pm_run(const pm_case *c, const pm_run_opts *o, pm_sim **out_sim)
         .title = c->title,
         .formulation = c->formulation == PM_AXISYMMETRIC ? "axisymmetric"
                        : c->formulation == PM_PLANE_STRESS ? "plane_stress" : "plane_strain",
+        .grid = s->grid.structured ? "structured" : "unstructured",
         .steps = s->step,
         .dt_min = isfinite(loop.dt_min) ? loop.dt_min : 0,
         .dt_max = loop.dt_max,

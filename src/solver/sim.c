@@ -32,6 +32,9 @@ static int build_grid(const pm_case *c, pm_grid *g)
                                 "%s: grid.file: in an axisymmetric run x is the radius, so the mesh must lie in "
                                 "x >= 0; its nodes reach x = %g",
                                 c->file, g->lo[0]);
+        /* MPM only: the meshfree methods take their nodal spacing from the mesh as given */
+        if (c->grid.lattice && c->method == PM_METHOD_MPM && (rc = pm_grid_adopt_lattice(g)) < 0)
+            return pm_error_prefix(rc, "%s: grid.file: ", c->file);
         return PM_OK;
     }
     if (c->grid.type != PM_GRID_RECTANGLE)
