@@ -56,16 +56,28 @@ static void angles(sink *s, const pm_case *c, size_t k)
     }
 }
 
-/* apart_measure "cell" acts through a material's density_state (granular) and does nothing without one */
+/* apart_measure "cell" acts through a material's density_state (granular), and that only where a point
+ * reads looser than the material's max_void_ratio: without one of those the key does nothing */
 static void apart_measure(sink *s, const pm_case *c)
 {
     if (!c->analysis.apart_from_cell)
         return;
-    for (size_t k = 0; k < c->n_materials && c->materials; k++)
-        if (c->materials[k].ops && c->materials[k].ops->density_state)
+    int granular = 0;
+    for (size_t k = 0; k < c->n_materials && c->materials; k++) {
+        const pm_material *m = &c->materials[k];
+        if (!m->ops || !m->ops->density_state)
+            continue;
+        granular = 1;
+        if (pm_material_param_index(m->ops, "max_void_ratio") < 0 || isfinite(pm_material_param(m, "max_void_ratio")))
             return;
-    add(s, "%s: analysis.apart_measure is \"cell\", but no material takes its state from the positions' "
-        "density (only 'granular' does): the key changes nothing", c->file);
+    }
+    if (!granular)
+        add(s, "%s: analysis.apart_measure is \"cell\", but no material takes its state from the positions' "
+            "density (only 'granular' does): the key changes nothing", c->file);
+    else
+        add(s, "%s: analysis.apart_measure is \"cell\", but no granular material sets max_void_ratio: the "
+            "positions loosen a granular state only where it reads looser than that, so the key changes nothing",
+            c->file);
 }
 
 size_t pm_case_warnings(const pm_case *c, char (*out)[PM_WARNING_LEN], size_t cap)

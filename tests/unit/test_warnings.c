@@ -86,6 +86,38 @@ static void each_rule_fires(void **state)
                (const char *const[]){"materials[0]", "bulk_modulus 500", "shear_modulus 300", "below 1 kPa", NULL});
 }
 
+/* apart_measure "cell" with a granular material: nothing to warn of when it sets max_void_ratio, one
+ * warning naming that parameter when it does not (the positions then never loosen its state). */
+static size_t granular_cell_warnings(const char *max_void_ratio, char (*w)[PM_WARNING_LEN])
+{
+    pm_case c;
+    char mat[512];
+    snprintf(mat, sizeof mat,
+             "{\"name\": \"sand\", \"model\": \"granular\", \"density\": 1500, \"kappa\": 0.02, "
+             "\"void_ratio\": 0.9, \"reference_pressure\": 600, \"poisson_ratio\": 0.3, \"friction_angle\": 30, "
+             "\"viscosity\": 1e4, \"exponent\": 1%s%s}",
+             max_void_ratio ? ", \"max_void_ratio\": " : "", max_void_ratio ? max_void_ratio : "");
+    if (pm_case_load_buffer(base, strlen(base), "w.json", &c) != PM_OK ||
+        pm_case_set_json(&c, "analysis",
+                         "{\"type\": \"explicit\", \"end_time\": 1, \"gravity\": [0, -9.81], "
+                         "\"density_update\": \"positions\", \"apart_measure\": \"cell\"}") != PM_OK ||
+        pm_case_set_json(&c, "materials[0]", mat) != PM_OK)
+        fail_msg("%s", pm_error_message());
+    const size_t n = pm_case_warnings(&c, w, 8);
+    pm_case_free(&c);
+    return n;
+}
+
+static void cell_measure_needs_max_void_ratio(void **state)
+{
+    (void)state;
+    char w[8][PM_WARNING_LEN];
+    assert_int_equal(granular_cell_warnings("1.0", w), 0);
+    assert_int_equal(granular_cell_warnings(NULL, w), 1);
+    assert_non_null(strstr(w[0], "max_void_ratio"));
+    assert_non_null(strstr(w[0], "changes nothing"));
+}
+
 /* The step-size warning: once, when a step falls below 1/100 of the first. */
 static void a_collapsing_step_warns_once(void **state)
 {
@@ -112,6 +144,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(a_sound_case_has_none),
         cmocka_unit_test(each_rule_fires),
+        cmocka_unit_test(cell_measure_needs_max_void_ratio),
         cmocka_unit_test(a_collapsing_step_warns_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
