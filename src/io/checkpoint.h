@@ -31,8 +31,10 @@
 #define PM_CHECKPOINT_NAME "checkpoint.h5"
 
 /** The layout's version (attribute `format_version`): 2 added /meshfree and /lme, 3 /particles/C (APIC's
- *  affine matrix); a restart reads only its own. */
-#define PM_CHECKPOINT_FORMAT 3
+ *  affine matrix), 4 numbers a Gmsh lattice's nodes as the structured grid's and keeps its straight
+ *  friction groups as node sets (the contact impulses of a version 3 file index the mesh's own numbering
+ *  and edge walls); a restart reads only its own. */
+#define PM_CHECKPOINT_FORMAT 4
 
 /** What the time loop of pm_run() carries from step to step besides the simulation. */
 typedef struct pm_run_loop {

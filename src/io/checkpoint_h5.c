@@ -67,11 +67,6 @@ int ck_write(const ck_file *f, hid_t loc, const char *name, ck_type type, const 
     return PM_OK;
 }
 
-int ck_has(hid_t loc, const char *name)
-{
-    return H5Lexists(loc, name, H5P_DEFAULT) > 0;
-}
-
 /* Open dataset name and give its shape (1-D: cols = 1). */
 static hid_t open_shape(const ck_file *f, hid_t loc, const char *name, hsize_t dims[2], int *rank)
 {

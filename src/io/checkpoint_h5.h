@@ -39,10 +39,6 @@ int ck_write(const ck_file *f, hid_t loc, const char *name, ck_type type, const 
  */
 int ck_read(const ck_file *f, hid_t loc, const char *name, ck_type type, void *data, size_t rows, size_t cols);
 
-/** @brief 1 when @p loc holds a link (dataset or group) called @p name, 0 when not (the fields a newer
- *         layout added, which an older file of the same version lacks). */
-int ck_has(hid_t loc, const char *name);
-
 /** @brief Rows of dataset @p name (its first dimension). */
 int ck_rows(const ck_file *f, hid_t loc, const char *name, size_t *rows);
 

@@ -163,12 +163,6 @@ static int read_particles(pm_checkpoint *ck, hid_t g, void *arg)
         pm_particles_field_get(p, k, &pf);
         if (pf.width == 0) /* nothing to read, whatever width the writing run gave the field */
             continue;
-        if (!strcmp(pf.name, "v_grid") && !ck_has(g, pf.name)) {
-            /* output only, added after the layout's version 3: an older file restarts with zeros, which the
-             * first step after it overwrites */
-            memset(pf.data, 0, (size_t)n * pf.width * pf.elem);
-            continue;
-        }
         pm_check(ck_read(&ck->f, g, pf.name, pf.is_int ? CK_INT32 : CK_DOUBLE, pf.data, (size_t)n, pf.width));
     }
     p->n = (size_t)n;

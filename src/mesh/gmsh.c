@@ -6,6 +6,7 @@
  * and put in chains, so that a wall on it can take its normals and its shape from them.
  */
 #include "mesh/gmsh_internal.h"
+#include "mesh/mesh_internal.h"
 
 #include "pmech/error.h"
 #include "pmech/grid.h"
@@ -31,12 +32,6 @@ static void phys_label(const pm_msh *m, int dim, int tag, char out[64])
             return;
         }
     snprintf(out, 64, "%d", tag);
-}
-
-static int cmp_i32(const void *a, const void *b)
-{
-    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-    return (x > y) - (x < y);
 }
 
 /* Outward normal of a node set when its nodes lie on one straight line (else zero). */
@@ -337,7 +332,7 @@ static int build(pm_grid *g, const pm_msh *m, const char *path)
                         npairs++;
                     }
                 }
-                qsort(nodes, cnt, sizeof(int32_t), cmp_i32);
+                qsort(nodes, cnt, sizeof(int32_t), pm_mesh_cmp_i32);
                 size_t u = 0;
                 for (size_t i = 0; i < cnt; i++)
                     if (u == 0 || nodes[i] != nodes[u - 1])

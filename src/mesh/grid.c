@@ -8,6 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+int pm_mesh_cmp_i32(const void *a, const void *b)
+{
+    const int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return (x > y) - (x < y);
+}
+
 void pm_grid_free(pm_grid *g)
 {
     pm_grid_locator_free(g->locator);

@@ -19,12 +19,6 @@
  * so a transfinite node is off by round-off only; anything more is a different mesh. */
 #define LATTICE_TOL 1e-8
 
-static int cmp_i32(const void *a, const void *b)
-{
-    const int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-    return (x > y) - (x < y);
-}
-
 /* The lattice index of coordinate v along axis d, or -1 when v is not on a lattice line. */
 static long lattice_index(double v, double lo, double h, long n)
 {
@@ -69,12 +63,14 @@ static int number_cells(const pm_grid *g, const long n[PM_DIM], const int32_t *n
         const long i = n0 % row, j = n0 / row;
         if (i >= n[0] || j >= n[1])
             return 0;
-        const int32_t want[4] = {n0, n0 + 1, (int32_t)(n0 + row + 1), (int32_t)(n0 + row)};
-        qsort(v, 4, sizeof v[0], cmp_i32);
-        int32_t w[4];
-        memcpy(w, want, sizeof w);
-        qsort(w, 4, sizeof w[0], cmp_i32);
-        if (memcmp(v, w, sizeof v) != 0)
+        /* the four corners of the lattice square at n0, each once */
+        const int32_t want[4] = {n0, n0 + 1, (int32_t)(n0 + row), (int32_t)(n0 + row + 1)};
+        unsigned seen = 0;
+        for (int k = 0; k < 4; k++)
+            for (int w = 0; w < 4; w++)
+                if (v[k] == want[w])
+                    seen |= 1u << w;
+        if (seen != 0xFu)
             return 0;
         const long m = j * n[0] + i;
         if (taken[m])
@@ -120,7 +116,7 @@ static int renumber(pm_grid *g, const long n[PM_DIM], const double h[PM_DIM], co
         pm_node_set *set = &g->sets[s];
         for (size_t k = 0; k < set->n; k++)
             set->nodes[k] = new_of[set->nodes[k]];
-        qsort(set->nodes, set->n, sizeof set->nodes[0], cmp_i32);
+        qsort(set->nodes, set->n, sizeof set->nodes[0], pm_mesh_cmp_i32);
         for (size_t k = 0; k < 2 * set->n_edges; k++)
             set->edges[k] = new_of[set->edges[k]];
     }
@@ -128,7 +124,7 @@ static int renumber(pm_grid *g, const long n[PM_DIM], const double h[PM_DIM], co
         pm_cell_set *set = &g->cell_sets[s];
         for (size_t k = 0; k < set->n; k++)
             set->cells[k] = cell_of[set->cells[k]];
-        qsort(set->cells, set->n, sizeof set->cells[0], cmp_i32);
+        qsort(set->cells, set->n, sizeof set->cells[0], pm_mesh_cmp_i32);
     }
     pm_grid_locator_free(g->locator);
     g->locator = NULL;

@@ -23,12 +23,6 @@
 #include "solver/meshfree_internal.h"
 #include "sim_case.h"
 
-static void repo_path(const char *rel, char *out, size_t n)
-{
-    const char *f = __FILE__, *cut = strstr(f, "tests/unit/");
-    snprintf(out, n, "%.*s%s", (int)(cut ? cut - f : 0), f, rel);
-}
-
 /* A GMM simulation of a block (@p shape, JSON) on @p grid (JSON), loaded as if from @p case_path. */
 static pm_sim *gmm_sim(const char *case_path, const char *grid, const char *shape, pm_case *c)
 {
@@ -66,7 +60,7 @@ static void gmsh_triangles(void **state)
 {
     (void)state;
     char path[1024];
-    repo_path("tests/verification/cases/gmsh_incline.json", path, sizeof path);
+    sc_repo_path("tests/verification/cases/gmsh_incline.json", path, sizeof path);
     pm_case c;
     pm_sim *s = gmm_sim(path, "{ \"type\": \"gmsh\", \"file\": \"gmsh_incline25.msh\" }",
                         "{ \"type\": \"rectangle\", \"min\": [0.2, 0.33], \"max\": [0.3, 0.4] }", &c);

@@ -28,12 +28,6 @@
 #include "solver/sim_internal.h"
 #include "sim_case.h"
 
-static void repo_path(const char *rel, char *out, size_t n)
-{
-    const char *f = __FILE__, *cut = strstr(f, "tests/unit/");
-    snprintf(out, n, "%.*s%s", (int)(cut ? cut - f : 0), f, rel);
-}
-
 /* Write a mesh of one curve group (tag 1) and one surface group (tag 2, "inside") from nodes, lines and
  * triangles to a new file; its name into path (a mkstemp template). */
 static void write_mesh(char *path, const char *curve, size_t nn, const double *xy, size_t nl, const int *lines,
@@ -352,7 +346,7 @@ static int incline_case_of(const char *method, int on_slope, const char *group, 
         snprintf(shape, sizeof shape, "\"type\": \"polygon\", \"points\": [[%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g], [%.9g, %.9g]]",
                  q[0][0], q[0][1], q[1][0], q[1][1], q[2][0], q[2][1], q[3][0], q[3][1]);
     }
-    repo_path("tests/verification/cases/gmsh_incline.json", path, sizeof path);
+    sc_repo_path("tests/verification/cases/gmsh_incline.json", path, sizeof path);
     snprintf(text, sizeof text,
              "{ \"dimension\": 2, \"method\": \"%s\","
              "  \"analysis\": { \"type\": \"explicit\", \"end_time\": 0.01, \"gravity\": [0, -9.81] },"

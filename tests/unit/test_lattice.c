@@ -20,6 +20,8 @@
 #include "pmech/sim.h"
 #include "solver/sim_internal.h"
 
+#include "sim_case.h"
+
 enum { NX = 4, NY = 3 };
 static const double ORIGIN[2] = {-0.5, 1.0}, SIZE[2] = {2.0, 0.75};
 
@@ -148,19 +150,13 @@ static void other_meshes_stay_unstructured(void **state)
     pm_grid_free(&r);
 }
 
-static void repo_path(const char *rel, char *out, size_t n)
-{
-    const char *f = __FILE__, *cut = strstr(f, "tests/unit/");
-    snprintf(out, n, "%.*s%s", (int)(cut ? cut - f : 0), f, rel);
-}
-
 /* A block dropped 5 mm onto the silo's floor against its friction wall, 300 steps: grid given by
  * `grid`, the floor's and the wall's names by `floor` and `wall`. The case is kept for as long as the
  * run (`c`). */
 static pm_sim *silo_block(const char *grid, const char *floor, const char *wall, pm_case *c)
 {
     char dir[1024], text[4096];
-    repo_path("examples/silo_discharge/x.json", dir, sizeof dir);
+    sc_repo_path("examples/silo_discharge/x.json", dir, sizeof dir);
     snprintf(text, sizeof text,
              "{\"dimension\": 2, \"analysis\": {\"type\": \"explicit\", \"end_time\": 0.1, \"cfl\": 0.3,"
              " \"gravity\": [0, -9.81]}, \"grid\": %s,"
@@ -171,15 +167,7 @@ static pm_sim *silo_block(const char *grid, const char *floor, const char *wall,
              " \"boundary_conditions\": [{\"type\": \"fixed\", \"boundary\": \"%s\", \"directions\": [\"y\"]},"
              " {\"type\": \"friction\", \"boundary\": \"%s\", \"coefficient\": 0.3}]}",
              grid, floor, wall);
-    int rc = pm_case_load_buffer(text, strlen(text), dir, c);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
-    pm_sim *s;
-    rc = pm_sim_create(c, &s, 1);
-    if (rc)
-        fprintf(stderr, "%s\n", pm_error_message());
-    assert_int_equal(rc, 0);
+    pm_sim *s = sc_sim_of(text, dir, c);
     for (int k = 0; k < 300; k++)
         assert_int_equal(pm_sim_advance(s, 2e-4), 0);
     return s;
